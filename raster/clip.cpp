@@ -1,0 +1,106 @@
+#include "raster/clip.h"
+
+#include <cmath>
+
+namespace tessera::detail {
+namespace {
+
+constexpr int kFixedPlanes = 6;
+
+// Signed distance of a vertex to plane `p` (>= 0 inside). Planes 0-5: near, far, the four guard-band
+// sides; 6 + i: user clip distance i. Evaluated in double from float inputs, so the fixed planes
+// are exact up to one rounding (GL 4.6 §13.7 clip volume; guard band: docs/spec-choices.md).
+inline double planeDistance(const double* pos, const double* clip, int p) {
+  const double x = pos[0], y = pos[1], z = pos[2], w = pos[3];
+  switch (p) {
+    case 0: return z + w;
+    case 1: return w - z;
+    case 2: return kGuardBand * w + x;
+    case 3: return kGuardBand * w - x;
+    case 4: return kGuardBand * w + y;
+    case 5: return kGuardBand * w - y;
+    default: return clip[p - kFixedPlanes];
+  }
+}
+
+inline void toClipVertex(const VertexOut& v, int varyings, ClipVertex& o) {
+  for (int k = 0; k < 4; ++k) o.pos[k] = v.pos[k];
+  for (int k = 0; k < kMaxClipDistances; ++k) o.clip[k] = v.clip[k];
+  for (int k = 0; k < varyings; ++k) o.var[k] = v.var[k];
+}
+
+inline bool planeEnabled(int p, uint8_t clipMask) {
+  return p < kFixedPlanes || (clipMask >> (p - kFixedPlanes)) & 1;
+}
+
+}  // namespace
+
+ClipResult classifyTriangle(const VertexOut (&v)[3], uint8_t clipMask) {
+  // Non-finite positions (possible only through program arithmetic; validation rejects non-finite
+  // input positions) make the primitive undefined in GL; the oracle discards it.
+  for (const VertexOut& o : v)
+    for (float c : o.pos)
+      if (!std::isfinite(c)) return ClipResult::Outside;
+  bool cut = false;
+  for (int p = 0; p < kFixedPlanes + kMaxClipDistances; ++p) {
+    if (!planeEnabled(p, clipMask)) continue;
+    int outside = 0;
+    for (const VertexOut& o : v) {
+      const double pos[4] = {o.pos[0], o.pos[1], o.pos[2], o.pos[3]};
+      double clip[kMaxClipDistances];
+      for (int k = 0; k < kMaxClipDistances; ++k) clip[k] = o.clip[k];
+      const double d = planeDistance(pos, clip, p);
+      // NaN clip distances count as outside: GL leaves them undefined, the oracle drops the vertex side.
+      if (!(d >= 0.0)) ++outside;
+    }
+    if (outside == 3) return ClipResult::Outside;
+    if (outside > 0) cut = true;
+  }
+  return cut ? ClipResult::Clipped : ClipResult::Inside;
+}
+
+int clipTriangle(const VertexOut (&v)[3], uint8_t clipMask, int varyings, ClipVertex (&out)[kMaxClipPolygon]) {
+  ClipVertex bufA[kMaxClipPolygon], bufB[kMaxClipPolygon];
+  ClipVertex* in = bufA;
+  ClipVertex* next = bufB;
+  int n = 3;
+  for (int i = 0; i < 3; ++i) toClipVertex(v[i], varyings, in[i]);
+
+  for (int p = 0; p < kFixedPlanes + kMaxClipDistances && n > 0; ++p) {
+    if (!planeEnabled(p, clipMask)) continue;
+    double d[kMaxClipPolygon];
+    bool anyOut = false;
+    for (int i = 0; i < n; ++i) {
+      d[i] = planeDistance(in[i].pos, in[i].clip, p);
+      if (!(d[i] >= 0.0)) anyOut = true;
+    }
+    if (!anyOut) continue;
+    int m = 0;
+    for (int i = 0; i < n; ++i) {
+      const int j = (i + 1) % n;
+      const bool inI = d[i] >= 0.0, inJ = d[j] >= 0.0;
+      if (inI) next[m++] = in[i];
+      if (inI != inJ) {
+        // Always interpolate from the inside vertex towards the outside one, so an edge shared by
+        // two triangles yields the same new vertex whichever direction each triangle walks it.
+        const ClipVertex& a = inI ? in[i] : in[j];
+        const ClipVertex& b = inI ? in[j] : in[i];
+        const double da = inI ? d[i] : d[j], db = inI ? d[j] : d[i];
+        const double t = da / (da - db);
+        ClipVertex& o = next[m++];
+        for (int k = 0; k < 4; ++k) o.pos[k] = a.pos[k] + t * (b.pos[k] - a.pos[k]);
+        for (int k = 0; k < kMaxClipDistances; ++k) o.clip[k] = a.clip[k] + t * (b.clip[k] - a.clip[k]);
+        for (int k = 0; k < varyings; ++k) o.var[k] = a.var[k] + t * (b.var[k] - a.var[k]);
+      }
+    }
+    n = m;
+    ClipVertex* tmp = in;
+    in = next;
+    next = tmp;
+  }
+  if (n < 3) return 0;
+  for (int i = 0; i < n; ++i) out[i] = in[i];
+  return n;
+}
+
+}  // namespace tessera::detail

@@ -1,0 +1,376 @@
+#include "raster/cpu_backend.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cstring>
+#include <map>
+
+#include "raster/rast.h"
+#include "raster/setup.h"
+#include "raster/validate.h"
+
+namespace tessera {
+
+using namespace detail;
+
+namespace detail {
+
+void Scene::begin(const TargetView& t) {
+  reset();
+  target = t;
+  tilesX = (t.width + kTileSize - 1) / kTileSize;
+  tilesY = (t.height + kTileSize - 1) / kTileSize;
+  bins.assign(size_t(tilesX) * size_t(tilesY), {});
+}
+
+void Scene::reset() {
+  states.clear();
+  tris.clear();
+  clears.clear();
+  for (auto& b : bins) b.clear();
+}
+
+void PipelineStats::add(const PipelineStats& o) {
+  primitives_assembled += o.primitives_assembled;
+  primitives_dropped_by_program += o.primitives_dropped_by_program;
+  primitives_culled += o.primitives_culled;
+  primitives_clipped += o.primitives_clipped;
+  triangles_binned += o.triangles_binned;
+  quads_shaded += o.quads_shaded;
+  fragments_shaded += o.fragments_shaded;
+  helper_invocations += o.helper_invocations;
+  fragments_depth_failed += o.fragments_depth_failed;
+  fragments_discarded += o.fragments_discarded;
+  pixels_written += o.pixels_written;
+  tiles_rasterized += o.tiles_rasterized;
+}
+
+}  // namespace detail
+
+namespace {
+
+Rect intersect(const Rect& a, const Rect& b) {
+  const int32_t x0 = std::max(a.x, b.x), y0 = std::max(a.y, b.y);
+  const int64_t x1 = std::min<int64_t>(int64_t(a.x) + a.w, int64_t(b.x) + b.w);
+  const int64_t y1 = std::min<int64_t>(int64_t(a.y) + a.h, int64_t(b.y) + b.h);
+  return Rect{x0, y0, int32_t(std::max<int64_t>(0, x1 - x0)), int32_t(std::max<int64_t>(0, y1 - y0))};
+}
+
+// Vertices shaded per parallel task; vertex shading has no cross-vertex state, so any split gives
+// the same bytes.
+constexpr size_t kVertexChunk = 1024;
+
+}  // namespace
+
+struct CpuBackend::Impl {
+  RenderOptions options;
+  // Resources by id (one shared id space, as in the command list).
+  std::vector<std::unique_ptr<TextureData>> textures;
+  std::vector<std::unique_ptr<BufferData>> buffers;
+  std::vector<SamplerState> samplers;
+  std::vector<const Program*> programs;
+  std::map<ResourceId, std::array<Vec4, kMaxUniformSlots>> uniforms;  // per program object (GL 4.6 §7.6)
+
+  // Current state.
+  std::array<ResourceId, kMaxTextureUnits> unitTexture{};
+  std::array<ResourceId, kMaxTextureUnits> unitSampler{};
+  ResourceId program = kNone, vertexBuffer = kNone, indexBuffer = kNone;
+  IndexType indexType = IndexType::U16;
+  VertexLayout layout;
+  Rect viewport;
+  ScissorState scissor;
+  DepthState depth;
+  BlendState blend;
+  RasterState raster;
+  RenderTarget target;
+  bool targetBound = false;
+
+  Scene scene;
+  PipelineStats stats;
+  tbb::enumerable_thread_specific<RastScratch> scratch;
+
+  void resize(ResourceId id) {
+    const size_t n = size_t(id) + 1;
+    if (textures.size() < n) {
+      textures.resize(n);
+      buffers.resize(n);
+      samplers.resize(n);
+      programs.resize(n, nullptr);
+    }
+  }
+
+  TargetView resolveTarget(const RenderTarget& t) {
+    TargetView v;
+    v.level = t.level;
+    v.layer = t.layer;
+    uint32_t layers = ~0u;
+    auto take = [&](ResourceId id) -> TextureData* {
+      if (id == kNone) return nullptr;
+      TextureData* tex = textures[id].get();
+      v.width = int32_t(levelWidth(tex->desc, t.level));
+      v.height = int32_t(levelHeight(tex->desc, t.level));
+      layers = std::min(layers, tex->desc.layers);
+      return tex;
+    };
+    for (int a = 0; a < kMaxColorAttachments; ++a) v.color[size_t(a)] = take(t.color[size_t(a)]);
+    v.depth = take(t.depth);
+    v.layerCount = layers == ~0u ? 1 : layers;
+    return v;
+  }
+
+  void flush() {
+    if (scene.empty()) return;
+    const size_t tiles = scene.bins.size();
+    tbb::enumerable_thread_specific<PipelineStats> local;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles, 1), [&](const tbb::blocked_range<size_t>& r) {
+      RastScratch& s = scratch.local();
+      PipelineStats& st = local.local();
+      for (size_t i = r.begin(); i != r.end(); ++i) rasterizeTile(scene, i, s, st);
+    });
+    // Integer sums: the total does not depend on how tiles were spread over threads.
+    for (const PipelineStats& st : local) stats.add(st);
+    scene.reset();
+  }
+
+  void setTarget(const RenderTarget& t) {
+    if (targetBound && t == target) return;
+    flush();
+    target = t;
+    targetBound = true;
+    scene.begin(resolveTarget(t));
+  }
+
+  Rect clampRect() const {
+    Rect r = intersect(viewport, Rect{0, 0, scene.target.width, scene.target.height});
+    if (scissor.enabled) r = intersect(r, scissor.rect);
+    return r;
+  }
+
+  void clear(TileOp op, uint32_t attachment, const std::array<uint32_t, 4>& bits) {
+    Rect r{0, 0, scene.target.width, scene.target.height};
+    if (scissor.enabled) r = intersect(r, scissor.rect);
+    if (r.w == 0 || r.h == 0) return;
+    const uint32_t index = uint32_t(scene.clears.size());
+    scene.clears.push_back({attachment, bits, r});
+    // Bin into every tile the rectangle touches, in order with the triangles.
+    for (int32_t ty = r.y >> kTileOrder; ty <= (r.y + r.h - 1) >> kTileOrder; ++ty)
+      for (int32_t tx = r.x >> kTileOrder; tx <= (r.x + r.w - 1) >> kTileOrder; ++tx)
+        scene.bins[size_t(ty) * size_t(scene.tilesX) + size_t(tx)].push_back({op, index});
+  }
+
+  std::unique_ptr<DrawState> snapshot() {
+    auto ds = std::make_unique<DrawState>();
+    ds->program = programs[program];
+    ds->uniforms = uniforms[program];
+    ds->ctx.uniforms = ds->uniforms.data();
+    for (int u = 0; u < kMaxTextureUnits; ++u) {
+      TexUnit& tu = ds->ctx.units[size_t(u)];
+      const ResourceId tid = unitTexture[size_t(u)];
+      tu.tex = tid != kNone ? textures[tid].get() : nullptr;
+      const ResourceId sid = unitSampler[size_t(u)];
+      // No sampler object bound: the texture's own sampling state, which is GL's default (the
+      // command list has no texture parameters).
+      tu.sampler = SamplerQ::from(sid != kNone ? samplers[sid] : SamplerState{});
+    }
+    ds->depth = depth;
+    ds->blend = blend;
+    ds->varyings = ds->program->varyingCount();
+    ds->colorOutputs = std::min(ds->program->colorOutputs(), kMaxColorAttachments);
+    return ds;
+  }
+
+  void fetchVertex(uint32_t index, VertexIn& in) const {
+    const BufferData& vb = *buffers[vertexBuffer];
+    for (int a = 0; a < kMaxAttribs; ++a) {
+      Vec4& v = in.attr[a];
+      v = {0.0f, 0.0f, 0.0f, 1.0f};  // GL's default for missing components
+    }
+    for (const VertexAttrib& at : layout.attribs) {
+      if (at.components == 0 || at.location >= kMaxAttribs) continue;
+      const uint8_t* src = vb.bytes.data() + uint64_t(index) * layout.stride + at.offset;
+      Vec4& v = in.attr[at.location];
+      for (int k = 0; k < at.components; ++k) {
+        if (at.type == AttribType::F32) {
+          std::memcpy(&v[size_t(k)], src + 4 * k, 4);
+        } else {
+          uint32_t u;
+          std::memcpy(&u, src + 4 * k, 4);
+          v[size_t(k)] = float(u);  // exact: validation keeps U32 attributes below 2^24
+        }
+      }
+    }
+    in.vertexId = index;
+  }
+
+  uint32_t readIndex(uint32_t i) const {
+    const BufferData& ib = *buffers[indexBuffer];
+    if (indexType == IndexType::U16) {
+      uint16_t v;
+      std::memcpy(&v, ib.bytes.data() + size_t(i) * 2, 2);
+      return v;
+    }
+    uint32_t v;
+    std::memcpy(&v, ib.bytes.data() + size_t(i) * 4, 4);
+    return v;
+  }
+
+  void draw(const Draw& d) {
+    const uint32_t triCount = d.count / 3;
+    if (triCount == 0) return;
+    const uint32_t stateIndex = uint32_t(scene.states.size());
+    scene.states.push_back(snapshot());
+    const DrawState& ds = *scene.states.back();
+
+    // Vertex indices of the draw, then the distinct vertices to shade. Shading every index of the
+    // draw's range keeps the vertex stage a pure function of the index.
+    const uint32_t n = triCount * 3;
+    std::vector<uint32_t> idx(n);
+    for (uint32_t i = 0; i < n; ++i) idx[i] = d.indexed ? readIndex(d.first + i) : d.first + i;
+    uint32_t lo = idx[0], hi = idx[0];
+    for (uint32_t v : idx) lo = std::min(lo, v), hi = std::max(hi, v);
+    const bool dense = uint64_t(hi - lo) + 1 <= uint64_t(n) * 2;
+    const size_t shadeCount = dense ? size_t(hi - lo) + 1 : size_t(n);
+    std::vector<VertexIn> in(shadeCount);
+    std::vector<VertexOut> out(shadeCount);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, shadeCount, kVertexChunk), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i) fetchVertex(dense ? lo + uint32_t(i) : idx[i], in[i]);
+      std::span<const VertexIn> ins(in.data() + r.begin(), r.size());
+      std::span<VertexOut> outs(out.data() + r.begin(), r.size());
+      for (VertexOut& o : outs) std::memset(&o, 0, sizeof o);
+      ds.program->shadeVertices(ins, outs, ds.ctx);
+    });
+
+    SetupParams params;
+    params.viewport = viewport;
+    params.clampRect = clampRect();
+    params.raster = raster;
+    params.stateIndex = stateIndex;
+    params.varyings = ds.varyings;
+    const bool layered = target.layer == kLayered;
+    for (uint32_t t = 0; t < triCount; ++t) {
+      VertexOut v[3];
+      for (int k = 0; k < 3; ++k) v[k] = out[dense ? idx[3 * t + uint32_t(k)] - lo : 3 * t + uint32_t(k)];
+      uint32_t layer = 0;
+      if (ds.program->hasGeometryStage() && !ds.program->shadeTriangle(v, t, layer, ds.ctx)) {
+        ++stats.primitives_assembled;
+        ++stats.primitives_dropped_by_program;
+        continue;
+      }
+      if (layered) {
+        // GL 4.6 §9.8: a layer outside the attachments gives undefined results; the oracle drops
+        // the primitive (llvmpipe clamps), docs/spec-choices.md "Layered rendering".
+        if (layer >= scene.target.layerCount) {
+          ++stats.primitives_assembled;
+          ++stats.primitives_dropped_by_program;
+          continue;
+        }
+      } else {
+        layer = target.layer;  // gl_Layer is ignored for a non-layered target
+      }
+      setupTriangle(v, t, layer, params, scene, stats);
+    }
+  }
+
+  void run(const CommandList& list) {
+    for (const Command& cmd : list.commands()) {
+      std::visit([&](const auto& c) { apply(list, c); }, cmd);
+    }
+    flush();
+  }
+
+  void apply(const CommandList&, const CreateTexture& c) {
+    resize(c.id);
+    textures[c.id] = std::make_unique<TextureData>(c.desc);
+    if (c.desc.kind == TextureKind::Buffer) textures[c.id]->buffer = buffers[c.desc.buffer].get();
+  }
+  void apply(const CommandList& l, const UploadTexture& c) {
+    flush();  // pending draws may sample the old contents
+    auto src = l.bytes(c.data);
+    TextureData& t = *textures[c.id];
+    const uint64_t bytes = levelBytes(t.desc, c.level);
+    std::memcpy(t.levels[c.level].data() + bytes * c.layer, src.data(), src.size());
+  }
+  void apply(const CommandList&, const CreateBuffer& c) {
+    resize(c.id);
+    buffers[c.id] = std::make_unique<BufferData>();
+    buffers[c.id]->kind = c.kind;
+    buffers[c.id]->bytes.assign(size_t(c.size), 0);
+  }
+  void apply(const CommandList& l, const UploadBuffer& c) {
+    flush();
+    auto src = l.bytes(c.data);
+    std::memcpy(buffers[c.id]->bytes.data() + c.offset, src.data(), src.size());
+  }
+  void apply(const CommandList&, const CreateSampler& c) {
+    resize(c.id);
+    samplers[c.id] = c.state;
+  }
+  void apply(const CommandList&, const CreateProgram& c) {
+    resize(c.id);
+    programs[c.id] = findProgram(c.name);
+    uniforms[c.id] = {};
+  }
+  void apply(const CommandList&, const BindTexture& c) { unitTexture[c.unit] = c.texture; }
+  void apply(const CommandList&, const BindSampler& c) { unitSampler[c.unit] = c.sampler; }
+  void apply(const CommandList&, const UseProgram& c) { program = c.program; }
+  void apply(const CommandList& l, const SetUniforms& c) {
+    auto src = l.bytes(c.data);
+    std::memcpy(uniforms[program].data() + c.slot, src.data(), src.size());
+  }
+  void apply(const CommandList&, const BindVertexBuffer& c) { vertexBuffer = c.buffer; }
+  void apply(const CommandList&, const SetVertexLayout& c) { layout = c.layout; }
+  void apply(const CommandList&, const BindIndexBuffer& c) { indexBuffer = c.buffer, indexType = c.type; }
+  void apply(const CommandList&, const SetViewport& c) { viewport = c.rect; }
+  void apply(const CommandList&, const SetScissor& c) { scissor = c.state; }
+  void apply(const CommandList&, const SetDepthState& c) { depth = c.state; }
+  void apply(const CommandList&, const SetBlendState& c) { blend = c.state; }
+  void apply(const CommandList&, const SetRasterState& c) { raster = c.state; }
+  void apply(const CommandList&, const SetRenderTarget& c) { setTarget(c.target); }
+  void apply(const CommandList&, const ClearColor& c) { clear(TileOp::ClearColor, c.attachment, c.bits); }
+  void apply(const CommandList&, const ClearDepth& c) {
+    std::array<uint32_t, 4> bits{};
+    std::memcpy(bits.data(), &c.depth, 4);
+    clear(TileOp::ClearDepth, 0, bits);
+  }
+  void apply(const CommandList&, const Draw& d) { draw(d); }
+  void apply(const CommandList&, const Marker&) {}
+};
+
+CpuBackend::CpuBackend(RenderOptions options) : impl_(std::make_unique<Impl>()) { impl_->options = options; }
+CpuBackend::~CpuBackend() = default;
+
+void CpuBackend::execute(const CommandList& list, std::string_view frameName) {
+  validateOrThrow(list, frameName);
+  const int threads = impl_->options.threads > 0 ? impl_->options.threads : tbb::this_task_arena::max_concurrency();
+  tbb::task_arena arena(threads);
+  arena.execute([&] { impl_->run(list); });
+}
+
+const TextureData* CpuBackend::texture(ResourceId id) const {
+  return id < impl_->textures.size() ? impl_->textures[id].get() : nullptr;
+}
+
+std::vector<PresentedImage> CpuBackend::presented() const {
+  std::vector<PresentedImage> out;
+  if (!impl_->targetBound) return out;
+  const RenderTarget& t = impl_->target;
+  for (uint32_t a = 0; a < kMaxColorAttachments; ++a) {
+    const ResourceId id = t.color[a];
+    if (id == kNone) continue;
+    const TextureData& tex = *impl_->textures[id];
+    if (t.layer == kLayered) {
+      for (uint32_t l = 0; l < tex.desc.layers; ++l) out.push_back({id, a, t.level, l});
+    } else {
+      out.push_back({id, a, t.level, t.layer});
+    }
+  }
+  return out;
+}
+
+const PipelineStats& CpuBackend::stats() const { return impl_->stats; }
+
+}  // namespace tessera

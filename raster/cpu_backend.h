@@ -1,0 +1,52 @@
+// The CPU backend: the oracle. Replays a CommandList bit-reproducibly.
+//
+// Implements: execution of every command kind of command_list.h with the rules of
+// docs/spec-choices.md: vertex fetch and program stages, clipping, setup and 64x64 binning, and
+// parallel per-tile rasterization on oneTBB (tiles own their pixels; within a tile primitives run in
+// submission order, so the bytes do not depend on the thread count).
+// Does not implement: validation beyond validate.h (every list is validated before it runs), GL.
+//
+// Outputs: after execute(), every resource is readable; the frame's presented images are the colour
+// attachments of the render target bound when the list ends (every layer of a layered target).
+#pragma once
+
+#include <memory>
+#include <string_view>
+#include <vector>
+
+#include "raster/command_list.h"
+#include "raster/pipeline.h"
+#include "raster/texture.h"
+
+namespace tessera {
+
+struct RenderOptions {
+  int threads = 0;  // 0 = all hardware threads
+};
+
+// One presented image: attachment `attachment` of the final target at (level, layer).
+struct PresentedImage {
+  ResourceId texture = kNone;
+  uint32_t attachment = 0, level = 0, layer = 0;
+};
+
+class CpuBackend {
+ public:
+  explicit CpuBackend(RenderOptions options = {});
+  ~CpuBackend();
+  CpuBackend(const CpuBackend&) = delete;
+  CpuBackend& operator=(const CpuBackend&) = delete;
+
+  // Validates the list (throws Error naming `frameName` and the command index) and runs it.
+  void execute(const CommandList& list, std::string_view frameName = "frame");
+
+  const TextureData* texture(ResourceId id) const;
+  std::vector<PresentedImage> presented() const;
+  const detail::PipelineStats& stats() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace tessera

@@ -1,0 +1,32 @@
+// Per-fragment operations after the fragment program, one function per GL stage in pipeline order
+// (GL 4.6 §17.3): depth test, depth write, blend, conversion and colour write.
+//
+// Implements: the eight depth functions on float32 depth; every GL blend equation and factor; the
+// fixed-point rules (sources, destination and factors clamped to [0, 1] for unorm targets,
+// §17.3.6.1); one round-half-to-even conversion to unorm8 from a double (§2.3.5.2, "round to
+// nearest" with ties to even chosen, docs/spec-choices.md); float targets unclamped and rounded to
+// float once; integer targets never blended (§17.3.6).
+// Does not implement: stencil, logic op, colour masks, sRGB, dithering (GL's default dither is a
+// no-op here: §17.3.9 allows it to do nothing).
+#pragma once
+
+#include <cstdint>
+
+#include "raster/types.h"
+
+namespace tessera::detail {
+
+bool depthPasses(CompareFunc f, float incoming, float stored);
+
+// NaN-safe unorm8 conversion: clamp to [0, 1] (NaN -> 0), then round half to even of c * 255.
+uint8_t toUnorm8(double c);
+
+// Blends `src` (the program's output) with `dst` under `b`; `unorm` selects the fixed-point rules.
+// Returns the result in double, before conversion.
+void blend(const BlendState& b, bool unorm, const float src[4], const double dst[4], double out[4]);
+
+// Writes one fragment to a texel of the given format (the texel pointer is the first byte).
+// `bits` are the program output's raw 32-bit lanes (float bits, or uint for R32UI).
+void writeFragment(Format f, uint8_t* texel, const uint32_t bits[4], const BlendState& b);
+
+}  // namespace tessera::detail

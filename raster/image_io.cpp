@@ -1,0 +1,81 @@
+#include "raster/image_io.h"
+
+#include <OpenImageIO/imageio.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstring>
+
+#include "raster/sha256.h"
+
+namespace tessera {
+
+std::vector<uint8_t> imagePixels(const TextureData& tex, uint32_t level, uint32_t layer) {
+  const uint32_t w = levelWidth(tex.desc, level), h = levelHeight(tex.desc, level);
+  const size_t row = size_t(w) * texelBytes(tex.desc.format);
+  std::vector<uint8_t> out(row * h);
+  for (uint32_t y = 0; y < h; ++y)  // GL rows are bottom-up; files are top-down
+    std::memcpy(out.data() + size_t(h - 1 - y) * row, tex.texel(level, layer, 0, y), row);
+  return out;
+}
+
+std::string imageSha256(const TextureData& tex, uint32_t level, uint32_t layer) {
+  const auto px = imagePixels(tex, level, layer);
+  return sha256Hex(px);
+}
+
+std::string imageExtension(Format f) { return isUnorm(f) ? ".png" : ".exr"; }
+
+namespace {
+
+void writeAtomically(const std::string& path, const OIIO::ImageSpec& spec, const void* pixels) {
+  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
+  auto out = OIIO::ImageOutput::create(path);  // format from the final name's extension
+  if (!out) throw Error(path + ": cannot create an image writer: " + OIIO::geterror());
+  if (!out->open(tmp, spec)) {
+    std::string e = out->geterror();
+    std::remove(tmp.c_str());
+    throw Error(path + ": cannot open for writing: " + e);
+  }
+  if (!out->write_image(spec.format, pixels) || !out->close()) {
+    std::string e = out->geterror();
+    std::remove(tmp.c_str());
+    throw Error(path + ": write failed: " + e);
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw Error(path + ": cannot rename the finished temporary file into place");
+  }
+}
+
+}  // namespace
+
+void writeImage(const TextureData& tex, uint32_t level, uint32_t layer, const std::string& path) {
+  const uint32_t w = levelWidth(tex.desc, level), h = levelHeight(tex.desc, level);
+  const auto px = imagePixels(tex, level, layer);
+  OIIO::TypeDesc type;
+  switch (tex.desc.format) {
+    case Format::RGBA8:
+    case Format::R8: type = OIIO::TypeDesc::UINT8; break;
+    case Format::R32UI: type = OIIO::TypeDesc::UINT32; break;
+    default: type = OIIO::TypeDesc::FLOAT; break;
+  }
+  OIIO::ImageSpec spec(int(w), int(h), channelCount(tex.desc.format), type);
+  if (tex.desc.format == Format::R32UI) spec.channelnames = {"id"};
+  if (tex.desc.format == Format::RGBA8) {
+    spec.alpha_channel = 3;
+    // Our pixels are what the target holds; without this OIIO would "un-premultiply" them on the way
+    // into PNG and the file would no longer match image_sha256.
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+  }
+  writeAtomically(path, spec, px.data());
+}
+
+void writePngRGBA8(const std::string& path, int width, int height, const uint8_t* topDownRows) {
+  OIIO::ImageSpec spec(width, height, 4, OIIO::TypeDesc::UINT8);
+  spec.alpha_channel = 3;
+  spec.attribute("oiio:UnassociatedAlpha", 1);
+  writeAtomically(path, spec, topDownRows);
+}
+
+}  // namespace tessera

@@ -1,0 +1,103 @@
+// Internal data of the CPU backend, shared by its stages (not a public header):
+//   setup (clip.cpp, setup.cpp): vertices -> clipped, snapped triangles binned into 64x64 tiles;
+//   scene (this file): the bins, the per-draw state snapshots and the triangle arena;
+//   rast (rast.cpp, fragops.cpp): runs each tile's commands in submission order.
+// The two halves talk only through Scene, as llvmpipe's setup and rast do (lp_scene.h).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "raster/command_list.h"
+#include "raster/program.h"
+#include "raster/texture.h"
+
+namespace tessera::detail {
+
+// Everything a triangle of one draw needs at rasterization time, captured when the draw is issued
+// so later state changes do not affect it.
+struct DrawState {
+  const Program* program = nullptr;
+  std::array<Vec4, kMaxUniformSlots> uniforms{};
+  ShadeContext ctx;  // ctx.uniforms points into `uniforms`
+  DepthState depth;
+  BlendState blend;
+  int varyings = 0;
+  int colorOutputs = 1;
+};
+
+// A triangle after clipping, snapping and setup. Coordinates are in sub-pixels (8 fractional bits)
+// of GL window space (origin bottom-left, y up), already ordered counter-clockwise.
+struct TriSetup {
+  // Edge function i is opposite vertex i: E_i(p) = a[i] * px + b[i] * py + c[i]; E_i > 0 inside.
+  int64_t a[3], b[3], c[3];
+  // 0 for inclusive edges (left or bottom, GL window space), 1 otherwise: a sample on the edge is
+  // covered iff E_i - bias[i] >= 0 (docs/spec-choices.md "Fill rule").
+  int64_t bias[3];
+  int64_t area2;                    // 2 * signed area, > 0
+  int32_t minX, minY, maxX, maxY;   // inclusive pixel bounds, clamped to viewport/scissor/target
+  double invW[3];                   // 1 / w_clip per vertex
+  float z[3];                       // window depth per vertex
+  float var[3][kMaxVaryings];
+  uint32_t flat[kMaxFlatVaryings];
+  uint32_t primitiveId;
+  uint32_t layer;
+  uint32_t drawState;               // index into Scene::states
+  bool frontFacing;
+};
+
+enum class TileOp : uint8_t { Triangle, ClearColor, ClearDepth };
+struct TileCmd {
+  TileOp op;
+  uint32_t index;  // into Scene::tris or Scene::clears
+};
+
+struct ClearCmd {
+  uint32_t attachment;            // colour attachment (ClearColor only)
+  std::array<uint32_t, 4> bits;   // float bits or uint values; ClearDepth: bits[0] = float bits
+  Rect rect;                      // scissor-limited area
+};
+
+// One bound render target, resolved to storage.
+struct TargetView {
+  std::array<TextureData*, kMaxColorAttachments> color{};
+  TextureData* depth = nullptr;
+  uint32_t level = 0;
+  uint32_t layer = 0;        // fixed layer or kLayered
+  uint32_t layerCount = 1;   // layers available (min over attachments)
+  int32_t width = 0, height = 0;
+};
+
+struct Scene {
+  TargetView target;
+  std::vector<std::unique_ptr<DrawState>> states;
+  std::vector<TriSetup> tris;
+  std::vector<ClearCmd> clears;
+  int32_t tilesX = 0, tilesY = 0;
+  std::vector<std::vector<TileCmd>> bins;
+
+  void begin(const TargetView& t);
+  bool empty() const { return tris.empty() && clears.empty(); }
+  void reset();
+};
+
+// Counters of what the pipeline did (deterministic: integer sums, independent of threads).
+struct PipelineStats {
+  uint64_t primitives_assembled = 0;     // triangles formed from draws
+  uint64_t primitives_dropped_by_program = 0;  // geometry stage returned false or bad layer
+  uint64_t primitives_culled = 0;        // trivially outside a clip plane, zero-area, face-culled, no pixels
+  uint64_t primitives_clipped = 0;       // crossed a clip plane and went through polygon clipping
+  uint64_t triangles_binned = 0;         // triangles that reached the tile bins (after clipping)
+  uint64_t quads_shaded = 0;             // 2x2 quads that ran the fragment program
+  uint64_t fragments_shaded = 0;         // covered pixels that ran the fragment program
+  uint64_t helper_invocations = 0;       // uncovered quad pixels shaded for derivatives
+  uint64_t fragments_depth_failed = 0;
+  uint64_t fragments_discarded = 0;
+  uint64_t pixels_written = 0;
+  uint64_t tiles_rasterized = 0;
+  void add(const PipelineStats& o);
+};
+
+}  // namespace tessera::detail

@@ -1,0 +1,93 @@
+// Programs: the C++ vertex / geometry / fragment stages, each program under a stable name so the
+// GL backend can supply a GLSL twin with the same name, uniforms and attributes.
+//
+// Common principles
+// - Uniforms are vec4 slots (kMaxUniformSlots); a program documents its slot layout in its file.
+// - Vertex attributes arrive as vec4 floats, missing components filled with (0, 0, 0, 1) as GL does.
+// - Smooth varyings are perspective-correct; flat varyings are unsigned integers taken from the
+//   provoking vertex (the last vertex, GL's default GL_LAST_VERTEX_CONVENTION).
+// - Fragment programs run on batches of 2x2 quads (helper pixels included), so implicit-LOD
+//   texture lookups take their derivatives from the quad, like GLSL's texture().
+// - Stages are called once per batch (vertices of a draw, quads of a triangle in a tile), never per
+//   pixel through a virtual call.
+// Does not implement: the pipeline around them (cpu_backend.h).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "raster/limits.h"
+#include "raster/sample.h"
+
+namespace tessera {
+
+using Vec4 = std::array<float, 4>;
+
+struct ShadeContext {
+  const Vec4* uniforms = nullptr;  // kMaxUniformSlots slots
+  std::array<TexUnit, kMaxTextureUnits> units{};
+};
+
+struct VertexIn {
+  Vec4 attr[kMaxAttribs];
+  uint32_t vertexId;  // gl_VertexID (the index value for indexed draws)
+};
+
+struct VertexOut {
+  Vec4 pos;                                  // gl_Position, clip space
+  float clip[kMaxClipDistances];             // gl_ClipDistance (only enabled planes are used)
+  float var[kMaxVaryings];                   // smooth varyings
+  uint32_t flat[kMaxFlatVaryings];           // flat integer varyings
+};
+
+// One 2x2 quad of fragments. Pixel p of the quad sits at (x + (p & 1), y + (p >> 1)) in GL window
+// coordinates (y up). Helper pixels (coverage bit clear) are shaded too; their outputs are dropped.
+struct Quad {
+  int32_t x, y;
+  uint8_t coverage;                  // bit p: pixel p is inside the primitive
+  float var[4][kMaxVaryings];        // interpolated varyings per pixel
+};
+
+struct QuadOut {
+  // Per attachment, per pixel, RGBA as float bits or uint (decided by the attachment's format).
+  union Value { float f[4]; uint32_t u[4]; };
+  Value color[kMaxColorAttachments][4];
+  uint8_t discard;  // bit p: pixel p discarded by the program
+};
+
+struct QuadBatch {
+  const Quad* quads;
+  QuadOut* out;
+  size_t count;
+  uint32_t flat[kMaxFlatVaryings];  // from the provoking vertex
+  uint32_t primitiveId;             // gl_PrimitiveID: triangle index within the draw
+  uint32_t layer;                   // gl_Layer
+  bool frontFacing;
+};
+
+class Program {
+ public:
+  virtual ~Program() = default;
+  virtual std::string_view name() const = 0;
+  virtual int varyingCount() const = 0;      // smooth varyings used, <= kMaxVaryings
+  virtual int colorOutputs() const { return 1; }
+  virtual bool hasGeometryStage() const { return false; }
+
+  virtual void shadeVertices(std::span<const VertexIn> in, std::span<VertexOut> out, const ShadeContext& ctx) const = 0;
+  // Optional geometry stage, once per triangle after vertex shading and before clipping. May change
+  // positions, clip distances and varyings, and choose the output layer. Returns false to drop it.
+  virtual bool shadeTriangle(VertexOut (&v)[3], uint32_t primitiveId, uint32_t& layer, const ShadeContext& ctx) const {
+    (void)v, (void)primitiveId, (void)layer, (void)ctx;
+    return true;
+  }
+  virtual void shadeQuads(const QuadBatch& batch, const ShadeContext& ctx) const = 0;
+};
+
+// The registry of built-in programs (programs/*.cpp). nullptr for an unknown name.
+const Program* findProgram(std::string_view name);
+std::vector<std::string_view> programNames();
+
+}  // namespace tessera

@@ -1,0 +1,35 @@
+// Helpers shared by the built-in programs. Every arithmetic order here is part of the oracle:
+// the GLSL twins spell the same operations (GLSL may still reorder or fuse them; the comparator
+// treats sub-ULP position differences as EDGE_TIE, docs/spec-choices.md).
+#pragma once
+
+#include "raster/program.h"
+
+namespace tessera::programs {
+
+// Column-major mat4 in uniform slots [base, base + 4) (slot base + c is column c), times v,
+// evaluated as ((c0*x + c1*y) + c2*z) + c3*w in float per component.
+inline Vec4 mulMat4(const Vec4* u, int base, const Vec4& v) {
+  Vec4 r;
+  for (int i = 0; i < 4; ++i) {
+    float acc = u[base][i] * v[0];
+    acc = acc + u[base + 1][i] * v[1];
+    acc = acc + u[base + 2][i] * v[2];
+    acc = acc + u[base + 3][i] * v[3];
+    r[i] = acc;
+  }
+  return r;
+}
+
+// float -> uint32 for ids carried in float attributes / buffer texels. Values that are not an
+// exact non-negative integer below 2^32 (NaN included) map to 0xffffffff instead of UB.
+inline uint32_t toId(float f) {
+  return (f >= 0.0f && f < 4294967296.0f) ? uint32_t(f) : 0xffffffffu;
+}
+
+// Writes the same RGBA to every pixel of a quad's attachment.
+inline void storeColor(QuadOut& o, int attachment, int pixel, const float c[4]) {
+  for (int k = 0; k < 4; ++k) o.color[attachment][pixel].f[k] = c[k];
+}
+
+}  // namespace tessera::programs

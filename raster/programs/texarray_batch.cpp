@@ -1,0 +1,58 @@
+// Program "texarray_batch": texture-array batching (Trapp & Döllner 2015, Listing 1).
+// Attributes: 0 = position, 1 = (s, t, indexTAM). Uniforms: slots 0-3 = MVP.
+// Unit 0: the texture-array mapping TAM, a buffer texture (RG32F): entry e = (arrayID, layerID).
+// Units 1 .. 1 + kMaxArrays - 1: the texture arrays TA_0 .. TA_7 (sampler2DArray).
+//
+// Per fragment: indexTAM = int(floor(z + 0.5)); (arrayID, layerID) = texelFetch(TAM, indexTAM);
+// colour = textureGrad(TA[arrayID], (s, t, layerID), dFdx(st), dFdy(st)). The derivatives are the
+// quad's coarse differences taken before choosing the array, as the GLSL twin must do: GLSL forbids
+// non-uniform sampler indexing and derivatives inside non-uniform control flow are undefined
+// (GLSL 4.50 §8.9), so the twin computes dFdx/dFdy first and then switches over arrayID.
+// An arrayID outside [0, kMaxArrays) or an unbound array unit gives (0, 0, 0, 1) (incomplete).
+#include <cmath>
+
+#include "raster/programs/common.h"
+
+namespace tessera::programs {
+namespace {
+constexpr int kMaxArrays = 8;
+
+class TexarrayBatch final : public Program {
+ public:
+  std::string_view name() const override { return "texarray_batch"; }
+  int varyingCount() const override { return 3; }
+  void shadeVertices(std::span<const VertexIn> in, std::span<VertexOut> out, const ShadeContext& ctx) const override {
+    for (size_t i = 0; i < in.size(); ++i) {
+      out[i].pos = mulMat4(ctx.uniforms, 0, in[i].attr[0]);
+      for (int k = 0; k < 3; ++k) out[i].var[k] = in[i].attr[1][k];
+    }
+  }
+  void shadeQuads(const QuadBatch& b, const ShadeContext& ctx) const override {
+    for (size_t q = 0; q < b.count; ++q) {
+      const Quad& quad = b.quads[q];
+      float s[4], t[4];
+      for (int p = 0; p < 4; ++p) s[p] = quad.var[p][0], t[p] = quad.var[p][1];
+      // Coarse derivatives (GL 4.6 §8.14.1 with the quad rule of docs/spec-choices.md).
+      const float dsdx = s[1] - s[0], dtdx = t[1] - t[0], dsdy = s[2] - s[0], dtdy = t[2] - t[0];
+      for (int p = 0; p < 4; ++p) {
+        const int64_t index = int64_t(std::floor(double(quad.var[p][2]) + 0.5));
+        float tae[4];
+        fetchBuffer(ctx.units[0], index, tae);
+        const float arrayId = tae[0];
+        float c[4][4] = {{0, 0, 0, 1}, {0, 0, 0, 1}, {0, 0, 0, 1}, {0, 0, 0, 1}};
+        if (arrayId >= 0.0f && arrayId < float(kMaxArrays)) {
+          const int unit = 1 + int(arrayId);
+          // All four lanes get this pixel's layer; only lane p is kept. The LOD is the same for
+          // every lane since the derivatives are explicit.
+          const float sp[4] = {s[p], s[p], s[p], s[p]}, tp[4] = {t[p], t[p], t[p], t[p]};
+          const float rp[4] = {tae[1], tae[1], tae[1], tae[1]};
+          sampleGrad2DArray(ctx.units[unit], sp, tp, rp, dsdx, dtdx, dsdy, dtdy, c);
+        }
+        storeColor(b.out[q], 0, p, c[0]);
+      }
+    }
+  }
+};
+}  // namespace
+const Program& texarrayBatch() { static const TexarrayBatch p; return p; }
+}  // namespace tessera::programs

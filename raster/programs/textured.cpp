@@ -1,0 +1,42 @@
+// Program "textured": texture(unit 0, M * (s, t, 1)) * tint.
+// Attributes: 0 = position, 1 = texcoord (s, t). Uniforms: slots 0-3 = MVP; slots 4, 5, 6 = the
+// columns of the 3x3 texture matrix M in .xyz (applied per vertex: M is affine, so applying it per
+// vertex and interpolating equals applying it per fragment); slot 7 = RGBA tint; slot 8.x = shader
+// LOD bias (texture(s, c, bias)). With REPEAT addressing M realises the 2^k atlas scaling of the
+// texture atlas tree (Buchholz 2005 §4.5.4).
+#include "raster/programs/common.h"
+
+namespace tessera::programs {
+namespace {
+class Textured final : public Program {
+ public:
+  std::string_view name() const override { return "textured"; }
+  int varyingCount() const override { return 2; }
+  void shadeVertices(std::span<const VertexIn> in, std::span<VertexOut> out, const ShadeContext& ctx) const override {
+    const Vec4* u = ctx.uniforms;
+    for (size_t i = 0; i < in.size(); ++i) {
+      out[i].pos = mulMat4(u, 0, in[i].attr[0]);
+      const float s = in[i].attr[1][0], t = in[i].attr[1][1];
+      out[i].var[0] = (u[4][0] * s + u[5][0] * t) + u[6][0];
+      out[i].var[1] = (u[4][1] * s + u[5][1] * t) + u[6][1];
+    }
+  }
+  void shadeQuads(const QuadBatch& b, const ShadeContext& ctx) const override {
+    const float* tint = ctx.uniforms[7].data();
+    const float bias = ctx.uniforms[8][0];
+    for (size_t q = 0; q < b.count; ++q) {
+      const Quad& quad = b.quads[q];
+      float s[4], t[4], texel[4][4];
+      for (int p = 0; p < 4; ++p) s[p] = quad.var[p][0], t[p] = quad.var[p][1];
+      sampleQuad2D(ctx.units[0], s, t, bias, texel);
+      for (int p = 0; p < 4; ++p) {
+        float c[4];
+        for (int k = 0; k < 4; ++k) c[k] = texel[p][k] * tint[k];
+        storeColor(b.out[q], 0, p, c);
+      }
+    }
+  }
+};
+}  // namespace
+const Program& textured() { static const Textured p; return p; }
+}  // namespace tessera::programs

@@ -1,0 +1,220 @@
+#include "raster/rast.h"
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+
+#include "raster/fragops.h"
+
+namespace tessera::detail {
+namespace {
+
+struct TileRect {
+  int32_t x0, y0, x1, y1;  // inclusive
+};
+
+float loadDepth(const TextureData& d, uint32_t level, uint32_t layer, int32_t x, int32_t y) {
+  float z;
+  std::memcpy(&z, d.texel(level, layer, uint32_t(x), uint32_t(y)), sizeof z);
+  return z;
+}
+
+void storeDepth(TextureData& d, uint32_t level, uint32_t layer, int32_t x, int32_t y, float z) {
+  std::memcpy(d.texel(level, layer, uint32_t(x), uint32_t(y)), &z, sizeof z);
+}
+
+// Encodes a clear value as one texel of format f.
+void encodeClear(Format f, const std::array<uint32_t, 4>& bits, uint8_t out[16]) {
+  float v[4];
+  std::memcpy(v, bits.data(), sizeof v);
+  switch (f) {
+    case Format::RGBA8:
+      for (int k = 0; k < 4; ++k) out[k] = toUnorm8(v[k]);
+      break;
+    case Format::R8: out[0] = toUnorm8(v[0]); break;
+    case Format::RG32F: std::memcpy(out, v, 8); break;
+    case Format::RGBA32F: std::memcpy(out, v, 16); break;
+    case Format::R32UI: std::memcpy(out, bits.data(), 4); break;
+    case Format::D32F: {
+      // glClearDepth clamps to [0, 1] (GL 4.6 §17.4.3); NaN clears to 0.
+      float z = v[0] > 0.0f ? (v[0] < 1.0f ? v[0] : 1.0f) : 0.0f;
+      std::memcpy(out, &z, 4);
+      break;
+    }
+    default: break;
+  }
+}
+
+void runClear(const Scene& scene, const ClearCmd& c, TextureData* tex, const TileRect& tile) {
+  if (!tex) return;
+  const int32_t x0 = std::max(tile.x0, c.rect.x), x1 = std::min(tile.x1, c.rect.x + c.rect.w - 1);
+  const int32_t y0 = std::max(tile.y0, c.rect.y), y1 = std::min(tile.y1, c.rect.y + c.rect.h - 1);
+  if (x0 > x1 || y0 > y1) return;
+  uint8_t value[16];
+  encodeClear(tex->desc.format, c.bits, value);
+  const uint32_t bpp = texelBytes(tex->desc.format);
+  const TargetView& t = scene.target;
+  const uint32_t l0 = t.layer == kLayered ? 0 : t.layer, l1 = t.layer == kLayered ? t.layerCount : t.layer + 1;
+  for (uint32_t layer = l0; layer < l1; ++layer)
+    for (int32_t y = y0; y <= y1; ++y) {
+      uint8_t* row = tex->texel(t.level, layer, uint32_t(x0), uint32_t(y));
+      for (int32_t x = x0; x <= x1; ++x, row += bpp) std::memcpy(row, value, bpp);
+    }
+}
+
+class TriangleRasterizer {
+ public:
+  TriangleRasterizer(const Scene& scene, const TriSetup& t, RastScratch& s, PipelineStats& stats)
+      : scene_(scene), t_(t), ds_(*scene.states[t.drawState]), s_(s), stats_(stats) {}
+
+  void run(const TileRect& tile) {
+    const int32_t x0 = std::max(t_.minX, tile.x0), x1 = std::min(t_.maxX, tile.x1);
+    const int32_t y0 = std::max(t_.minY, tile.y0), y1 = std::min(t_.maxY, tile.y1);
+    if (x0 > x1 || y0 > y1) return;
+    for (int32_t by = y0 & ~(kBlockSize - 1); by <= y1; by += kBlockSize)
+      for (int32_t bx = x0 & ~(kBlockSize - 1); bx <= x1; bx += kBlockSize) block(bx, by, x0, y0, x1, y1);
+    flush();
+  }
+
+ private:
+  static constexpr int64_t kStep = kSubpixelOne;  // one pixel in sub-pixels
+
+  int64_t edgeAt(int i, int32_t x, int32_t y) const {
+    return t_.a[i] * ((int64_t(x) << kSubpixelBits) + kSubpixelHalf) +
+           t_.b[i] * ((int64_t(y) << kSubpixelBits) + kSubpixelHalf) + t_.c[i];
+  }
+
+  void block(int32_t bx, int32_t by, int32_t x0, int32_t y0, int32_t x1, int32_t y1) {
+    // Trivial reject / accept of the 8x8 block from each edge's extreme values over its samples.
+    int64_t e0[3];
+    bool full = true;
+    constexpr int64_t span = int64_t(kBlockSize - 1) * kStep;
+    for (int i = 0; i < 3; ++i) {
+      e0[i] = edgeAt(i, bx, by);
+      const int64_t hi = std::max<int64_t>(t_.a[i], 0) * span + std::max<int64_t>(t_.b[i], 0) * span;
+      const int64_t lo = std::min<int64_t>(t_.a[i], 0) * span + std::min<int64_t>(t_.b[i], 0) * span;
+      if (e0[i] - t_.bias[i] + hi < 0) return;
+      if (e0[i] - t_.bias[i] + lo < 0) full = false;
+    }
+    const bool inside = bx >= x0 && by >= y0 && bx + kBlockSize - 1 <= x1 && by + kBlockSize - 1 <= y1;
+    for (int32_t qy = by; qy < by + kBlockSize; qy += 2) {
+      if (qy + 1 < y0 || qy > y1) continue;
+      for (int32_t qx = bx; qx < bx + kBlockSize; qx += 2) {
+        if (qx + 1 < x0 || qx > x1) continue;
+        int64_t e[4][3];
+        uint8_t cov = 0;
+        for (int p = 0; p < 4; ++p) {
+          const int32_t px = qx + (p & 1), py = qy + (p >> 1);
+          bool in = true;
+          for (int i = 0; i < 3; ++i) {
+            e[p][i] = e0[i] + t_.a[i] * (int64_t(px - bx) * kStep) + t_.b[i] * (int64_t(py - by) * kStep);
+            if (!full) in = in && e[p][i] - t_.bias[i] >= 0;
+          }
+          if (!inside) in = in && px >= x0 && px <= x1 && py >= y0 && py <= y1;
+          cov |= uint8_t(in) << p;
+        }
+        if (cov) quad(qx, qy, cov, e);
+      }
+    }
+  }
+
+  void quad(int32_t qx, int32_t qy, uint8_t cov, const int64_t (&e)[4][3]) {
+    const size_t n = count_;
+    Quad& q = s_.quads[n];
+    q.x = qx, q.y = qy, q.coverage = cov;
+    auto& z = s_.depth[n];
+    uint8_t live = cov;
+    for (int p = 0; p < 4; ++p) {
+      // GL 4.6 §14.6.1: barycentrics from the exact edge values; perspective weights e_i / w_i.
+      const double ed[3] = {double(e[p][0]), double(e[p][1]), double(e[p][2])};
+      const double w0 = ed[0] * t_.invW[0], w1 = ed[1] * t_.invW[1], w2 = ed[2] * t_.invW[2];
+      const double sum = w0 + w1 + w2;
+      const double b0 = w0 / sum, b1 = w1 / sum, b2 = w2 / sum;
+      for (int k = 0; k < ds_.varyings; ++k)
+        q.var[p][k] = float(b0 * t_.var[0][k] + b1 * t_.var[1][k] + b2 * t_.var[2][k]);
+      // Depth is interpolated without perspective (§14.6.1, eq. 14.10).
+      const double area = double(t_.area2);
+      z[p] = float((ed[0] * t_.z[0] + ed[1] * t_.z[1] + ed[2] * t_.z[2]) / area);
+    }
+    const TargetView& tv = scene_.target;
+    if (ds_.depth.test && tv.depth) {
+      for (int p = 0; p < 4; ++p) {
+        if (!(live >> p & 1)) continue;
+        const float stored = loadDepth(*tv.depth, tv.level, t_.layer, qx + (p & 1), qy + (p >> 1));
+        if (!depthPasses(ds_.depth.func, z[p], stored)) live &= uint8_t(~(1u << p));
+      }
+      stats_.fragments_depth_failed += uint64_t(std::popcount(uint32_t(cov & ~live)));
+      if (!live) return;  // no pixel can change: skip shading (no side effects are lost)
+    }
+    s_.live[n] = live;
+    s_.outs[n].discard = 0;
+    if (++count_ == RastScratch::kBatch) flush();
+  }
+
+  void flush() {
+    if (!count_) return;
+    QuadBatch batch{s_.quads.data(), s_.outs.data(), count_, {}, t_.primitiveId, t_.layer, t_.frontFacing};
+    std::memcpy(batch.flat, t_.flat, sizeof batch.flat);
+    ds_.program->shadeQuads(batch, ds_.ctx);
+    const TargetView& tv = scene_.target;
+    const bool depthWrite = ds_.depth.test && ds_.depth.write && tv.depth;
+    for (size_t n = 0; n < count_; ++n) {
+      const Quad& q = s_.quads[n];
+      const uint8_t keep = uint8_t(s_.live[n] & ~s_.outs[n].discard);
+      stats_.quads_shaded += 1;
+      stats_.fragments_shaded += uint64_t(std::popcount(uint32_t(s_.live[n])));
+      stats_.helper_invocations += uint64_t(4 - std::popcount(uint32_t(s_.live[n])));
+      stats_.fragments_discarded += uint64_t(std::popcount(uint32_t(s_.live[n] & s_.outs[n].discard)));
+      for (int p = 0; p < 4; ++p) {
+        if (!(keep >> p & 1)) continue;
+        const int32_t x = q.x + (p & 1), y = q.y + (p >> 1);
+        if (depthWrite) storeDepth(*tv.depth, tv.level, t_.layer, x, y, s_.depth[n][p]);
+        for (int a = 0; a < ds_.colorOutputs; ++a) {
+          TextureData* c = tv.color[size_t(a)];
+          if (!c) continue;
+          writeFragment(c->desc.format, c->texel(tv.level, t_.layer, uint32_t(x), uint32_t(y)),
+                        s_.outs[n].color[a][p].u, ds_.blend);
+        }
+        ++stats_.pixels_written;
+      }
+    }
+    count_ = 0;
+  }
+
+  const Scene& scene_;
+  const TriSetup& t_;
+  const DrawState& ds_;
+  RastScratch& s_;
+  PipelineStats& stats_;
+  size_t count_ = 0;
+};
+
+}  // namespace
+
+void rasterizeTile(const Scene& scene, size_t tileIndex, RastScratch& scratch, PipelineStats& stats) {
+  const auto& bin = scene.bins[tileIndex];
+  if (bin.empty()) return;
+  ++stats.tiles_rasterized;
+  const int32_t tx = int32_t(tileIndex % size_t(scene.tilesX)), ty = int32_t(tileIndex / size_t(scene.tilesX));
+  const TileRect tile{tx * kTileSize, ty * kTileSize, std::min((tx + 1) * kTileSize, scene.target.width) - 1,
+                      std::min((ty + 1) * kTileSize, scene.target.height) - 1};
+  for (const TileCmd& cmd : bin) {
+    switch (cmd.op) {
+      case TileOp::Triangle: {
+        TriangleRasterizer r(scene, scene.tris[cmd.index], scratch, stats);
+        r.run(tile);
+        break;
+      }
+      case TileOp::ClearColor: {
+        const ClearCmd& c = scene.clears[cmd.index];
+        runClear(scene, c, scene.target.color[c.attachment], tile);
+        break;
+      }
+      case TileOp::ClearDepth:
+        runClear(scene, scene.clears[cmd.index], scene.target.depth, tile);
+        break;
+    }
+  }
+}
+
+}  // namespace tessera::detail

@@ -1,0 +1,652 @@
+// Texture sampling of the oracle (see sample.h for the rules; this file says why and where GL says so).
+//
+// Structure: a lookup is split into a per-quad "plan" (completeness, lambda -> filter, levels and
+// level weights, border texel in the storage domain) and a per-pixel filter templated on the format,
+// so the per-pixel path has no allocation, no virtual call and no format switch.
+//
+// Weights: every lookup is a sum of texels times integer weights whose total is 2^24:
+// 8-bit mip blend (256) x 8-bit alpha (256) x 8-bit beta (256). NEAREST uses one tap of weight
+// 2^16 per level. unorm8 sums are exact integers (< 255 * 2^24 < 2^32) converted to float once;
+// float texels times integer weights are exact in double, summed in a fixed order, scaled by 2^-24
+// (exact) and rounded to float once.
+#include "raster/sample.h"
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <type_traits>
+
+namespace tessera {
+
+namespace {
+
+constexpr uint32_t kWeightOne = 1u << kSubtexelBits;            // 256: one 8-bit weight
+constexpr uint32_t kLevelWeightOne = 1u << kLodFracBits;        // 256: one 8-bit mip blend weight
+constexpr double kTotalWeight = 16777216.0;                     // 2^24 = 256^3
+constexpr double kUnormDenominator = 255.0 * kTotalWeight;      // exact in double
+// Texel-space coordinates are clamped to +-2^52 before conversion to int64 (2^52 * 256 < 2^63).
+// Floats of that magnitude are multiples of 2^29, far beyond any meaningful coordinate.
+constexpr float kCoordLimit = 4503599627370496.0f;  // 2^52
+
+// floor(x) as an integer for |x| < 2^62, without libm (std::floor is a library call on baseline
+// x86-64 and would dominate the per-tap cost).
+inline int64_t floorToInt(double x) {
+  int64_t t = int64_t(x);  // truncation toward zero, exact for |x| < 2^63
+  if (double(t) > x) --t;
+  return t;
+}
+
+// Round half to even of x (|x| < 2^62) to an integer, independent of the FP rounding mode.
+inline int64_t roundHalfEven(double x) {
+  int64_t f = floorToInt(x);
+  // d is exact unless -1/2 < x < 0, where rounding can only move it towards 1, never across 1/2.
+  const double d = x - double(f);
+  if (d > 0.5 || (d == 0.5 && (f & 1) != 0)) ++f;
+  return f;
+}
+
+// A float LOD parameter to 8.8 fixed point, round half to even (spec-choices "LOD": quantized once).
+// NaN maps to 0; the range is clamped to [kLodMinusInf, kLodMax].
+int32_t quantizeLod(float v) {
+  if (std::isnan(v)) return 0;
+  double x = double(v) * 256.0;  // exact
+  if (x < double(kLodMinusInf)) x = double(kLodMinusInf);
+  if (x > double(kLodMax)) x = double(kLodMax);
+  return int32_t(roundHalfEven(x));  // |x| <= 2^20
+}
+
+// GL 4.6 §8.17 texture completeness, and §11.1.3.5: sampling an incomplete texture returns
+// (0, 0, 0, 1). An integer-format texture is incomplete unless the mag filter is NEAREST and the
+// min filter is NEAREST or NEAREST_MIPMAP_NEAREST. A mipmap min filter on a texture whose storage
+// has one level is complete (immutable storage clamps the max level to levels - 1).
+bool isComplete(const TextureData* tex, const SamplerState& s) {
+  if (tex == nullptr) return false;
+  const TextureDesc& d = tex->desc;
+  if (d.kind == TextureKind::Buffer) return false;  // only texelFetch (fetchBuffer) reads buffers
+  if (d.width == 0 || d.height == 0 || d.layers == 0 || d.levels == 0 || tex->levels.empty()) return false;
+  if (isInteger(d.format)) {
+    if (s.magFilter != Filter::Nearest) return false;
+    if (s.minFilter != Filter::Nearest && s.minFilter != Filter::NearestMipmapNearest) return false;
+  }
+  return true;
+}
+
+inline void writeIncomplete(float out[4]) {
+  out[0] = 0.0f;
+  out[1] = 0.0f;
+  out[2] = 0.0f;
+  out[3] = 1.0f;
+}
+
+struct LevelRef {
+  const uint8_t* data = nullptr;  // layer 0 of the level
+  uint64_t layerStride = 0;       // bytes per layer
+  int32_t w = 0, h = 0;
+  float fw = 0.0f, fh = 0.0f;  // w, h as float (exact: <= 16384)
+};
+
+// Everything about a lookup that does not depend on the pixel.
+struct Plan {
+  bool complete = false;
+  bool linear = false;  // texel filter within a level: LINEAR (true) or NEAREST
+  Wrap wrapS = Wrap::Repeat, wrapT = Wrap::Repeat;
+  uint32_t lastLayer = 0;
+  int levelCount = 0;           // 1 or 2
+  LevelRef lv[2];
+  uint32_t levelWeight[2] = {kLevelWeightOne, 0};  // sums to 256
+  // The border colour converted to the texture's storage domain (GL 4.6 §8.14.2: the border colour
+  // is "interpreted as an RGBA color to match the texture's internal format"; fixed-point
+  // components are clamped to [0, 1]). unorm8 borders are quantized to 8 bits (round half to even
+  // of c * 255) so that filtering stays in exact integers; float borders are used as given.
+  uint32_t borderU[4] = {0, 0, 0, 0};
+  float borderF[4] = {0, 0, 0, 0};
+  uint32_t borderUint = 0;  // R32UI: the bits of borderColor[0] (what a float border set with
+                            // glSamplerParameterfv becomes when read as an integer, as in Mesa)
+};
+
+LevelRef levelRef(const TextureData& tex, uint32_t level) {
+  LevelRef r;
+  r.w = int32_t(levelWidth(tex.desc, level));
+  r.h = int32_t(levelHeight(tex.desc, level));
+  r.fw = float(r.w);
+  r.fh = float(r.h);
+  r.layerStride = levelBytes(tex.desc, level);
+  r.data = tex.levels[level].data();
+  return r;
+}
+
+Plan makePlan(const TexUnit& u, int32_t lambda8) {
+  Plan p;
+  const SamplerState& s = u.sampler.state;
+  if (!isComplete(u.tex, s)) return p;
+  const TextureData& tex = *u.tex;
+  p.complete = true;
+  p.wrapS = s.wrapS;
+  p.wrapT = s.wrapT;
+  p.lastLayer = tex.desc.layers - 1;
+  // q: the last level of the storage (GL 4.6 §8.14.3 with level_base = 0, level_max = levels - 1).
+  // The sampler's maxLod needs no separate clamp: lambda <= maxLod already bounds the levels chosen
+  // below, and the one level it could add (d1 + 1 when lambda == maxLod is an integer) gets weight 0.
+  const uint32_t storedLevels = tex.desc.levels < tex.levels.size() ? tex.desc.levels : uint32_t(tex.levels.size());
+  const int32_t q = int32_t(storedLevels) - 1;
+
+  int32_t d1 = 0, d2 = 0;
+  uint32_t frac = 0;  // weight of d2, 0..255
+  if (lambda8 <= 0) {
+    // GL 4.6 §8.15: magnification iff lambda <= c, with c = 0 (spec-choices; llvmpipe's choice).
+    // The base level with the mag filter.
+    p.linear = s.magFilter == Filter::Linear;
+  } else {
+    switch (s.minFilter) {
+      case Filter::Nearest:
+      case Filter::Linear:
+        // GL 4.6 §8.14.2: a non-mipmapped min filter uses level_base.
+        p.linear = s.minFilter == Filter::Linear;
+        break;
+      case Filter::NearestMipmapNearest:
+      case Filter::LinearMipmapNearest: {
+        // GL 4.6 §8.14.3 eq. 8.x: d = base if lambda <= 1/2, else base + ceil(lambda + 1/2) - 1,
+        // clamped to q. In 8.8: ceil((lambda8 + 128) / 256) - 1 with lambda8 > 128 > 0.
+        p.linear = s.minFilter == Filter::LinearMipmapNearest;
+        const int32_t d = lambda8 <= 128 ? 0 : ((lambda8 + 128 + 255) >> 8) - 1;
+        d1 = d2 = d < q ? d : q;
+        break;
+      }
+      case Filter::NearestMipmapLinear:
+      case Filter::LinearMipmapLinear:
+      default: {
+        // GL 4.6 §8.14.3: d1 = base + floor(lambda), d2 = d1 + 1, both clamped to q; the blend
+        // weight of d2 is frac(lambda), here exactly the 8 fractional bits of lambda8.
+        p.linear = s.minFilter == Filter::LinearMipmapLinear;
+        const int32_t f = lambda8 >> 8;
+        d1 = f < q ? f : q;
+        d2 = f + 1 < q ? f + 1 : q;
+        frac = uint32_t(lambda8 & 0xff);
+        break;
+      }
+    }
+  }
+  p.lv[0] = levelRef(tex, uint32_t(d1));
+  // A blend with weight 0, or of a level with itself, is the single-level result: sample once.
+  // (Exact for unorm8; for floats it avoids 0 * Inf from an unused level.)
+  if (d2 != d1 && frac != 0) {
+    p.levelCount = 2;
+    p.lv[1] = levelRef(tex, uint32_t(d2));
+    p.levelWeight[0] = kLevelWeightOne - frac;
+    p.levelWeight[1] = frac;
+  } else {
+    p.levelCount = 1;
+    p.levelWeight[0] = kLevelWeightOne;
+  }
+
+  const Format fmt = tex.desc.format;
+  for (int c = 0; c < 4; ++c) {
+    const float b = s.borderColor[size_t(c)];
+    if (isUnorm(fmt)) {
+      const double cl = std::isnan(b) ? 0.0 : (b < 0.0f ? 0.0 : (b > 1.0f ? 1.0 : double(b)));
+      p.borderU[c] = uint32_t(roundHalfEven(cl * 255.0));  // 0..255
+    }
+    p.borderF[c] = b;
+  }
+  std::memcpy(&p.borderUint, &s.borderColor[0], sizeof p.borderUint);
+  return p;
+}
+
+// --- per-format texel access ---------------------------------------------------------------------
+
+template <Format F>
+struct Fmt;
+template <>
+struct Fmt<Format::RGBA8> {
+  static constexpr int kChannels = 4;
+  static constexpr bool kUnorm = true;
+};
+template <>
+struct Fmt<Format::R8> {
+  static constexpr int kChannels = 1;
+  static constexpr bool kUnorm = true;
+};
+template <>
+struct Fmt<Format::RG32F> {
+  static constexpr int kChannels = 2;
+  static constexpr bool kUnorm = false;
+};
+template <>
+struct Fmt<Format::RGBA32F> {
+  static constexpr int kChannels = 4;
+  static constexpr bool kUnorm = false;
+};
+template <>
+struct Fmt<Format::D32F> {
+  static constexpr int kChannels = 1;
+  static constexpr bool kUnorm = false;
+};
+
+template <Format F>
+using Acc = std::conditional_t<Fmt<F>::kUnorm, uint64_t, double>;
+
+inline float loadF32(const uint8_t* p) {
+  float v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+// acc += w * texel; texel == nullptr means the border texel.
+template <Format F>
+inline void accumulate(const Plan& p, const uint8_t* texel, uint32_t w, Acc<F> acc[4]) {
+  constexpr int C = Fmt<F>::kChannels;
+  if constexpr (Fmt<F>::kUnorm) {
+    if (texel != nullptr) {
+      for (int c = 0; c < C; ++c) acc[c] += uint64_t(w) * texel[c];
+    } else {
+      for (int c = 0; c < C; ++c) acc[c] += uint64_t(w) * p.borderU[c];
+    }
+  } else {
+    // float x integer weight (< 2^25) is exact in double.
+    if (texel != nullptr) {
+      for (int c = 0; c < C; ++c) acc[c] += double(loadF32(texel + 4 * c)) * double(w);
+    } else {
+      for (int c = 0; c < C; ++c) acc[c] += double(p.borderF[c]) * double(w);
+    }
+  }
+}
+
+// NEAREST texel index (GL 4.6 §8.14.2: i = floor(u)). NaN coordinates are treated as 0 (GL leaves
+// them undefined); the clamp keeps the int64 conversion defined.
+inline int64_t nearestIndex(float u) {
+  if (std::isnan(u)) return 0;
+  if (u < -kCoordLimit) u = -kCoordLimit;
+  if (u > kCoordLimit) u = kCoordLimit;
+  return floorToInt(double(u));
+}
+
+// LINEAR: i0 = floor(u - 1/2), alpha = frac(u - 1/2) rounded half to even to 8 bits
+// (GL 4.6 §8.14.2 eq. for LINEAR; 8-bit subtexel precision as D3D / llvmpipe's AoS path).
+// Computed as U = round_half_even(256 * u) - 128 (256 * u is exact in double), then i0 = U >> 8 and
+// alpha8 = U & 255. This equals the rule above; when alpha rounds up to 256 the carry moves to i0,
+// which gives the same filtered value (the full weight lands on the same texel).
+inline int64_t linearFixed(float u) {
+  if (std::isnan(u)) u = 0.0f;
+  if (u < -kCoordLimit) u = -kCoordLimit;
+  if (u > kCoordLimit) u = kCoordLimit;
+  return roundHalfEven(double(u) * 256.0) - 128;  // |256 u| <= 2^60
+}
+
+// Mathematical i mod n for n > 0. The sizes of power-of-two textures take a mask (two's complement
+// makes it right for negative i too); others a 32-bit division when i fits, which is the common case.
+inline int64_t floorMod(int64_t i, int64_t n) {
+  if ((n & (n - 1)) == 0) return i & (n - 1);
+  int64_t m;
+  if (i >= INT32_MIN && i <= INT32_MAX) {
+    m = int32_t(i) % int32_t(n);
+  } else {
+    m = i % n;
+  }
+  return m < 0 ? m + n : m;
+}
+
+// GL 4.6 §8.14.2 Table 8.20 (wrapCoord() is the public name). Returns -1 for a border texel.
+inline int32_t wrapIndex(Wrap w, int64_t i, int32_t size) {
+  if (size <= 0) return -1;
+  switch (w) {
+    case Wrap::Repeat:  // i mod size
+      return int32_t(floorMod(i, size));
+    case Wrap::MirroredRepeat: {  // (size - 1) - mirror((i mod 2 size) - size), mirror(a) = a >= 0 ? a : -(1 + a)
+      const int64_t a = floorMod(i, int64_t(2) * size) - size;
+      const int64_t mir = a >= 0 ? a : -(1 + a);
+      return int32_t(size - 1 - mir);
+    }
+    case Wrap::ClampToEdge:  // clamp(i, 0, size - 1)
+      return int32_t(i < 0 ? 0 : (i >= size ? size - 1 : i));
+    case Wrap::ClampToBorder:  // clamp(i, -1, size); -1 and size are the border texel
+    default:
+      return (i < 0 || i >= size) ? -1 : int32_t(i);
+  }
+}
+
+// The wrapped pair (i0, i0 + 1) of a LINEAR footprint. REPEAT derives the second from the first
+// (one modulo instead of two); the result is the same as two wrapIndex() calls.
+inline void wrapPair(Wrap w, int64_t i0, int32_t size, int32_t& w0, int32_t& w1) {
+  if (w == Wrap::Repeat && size > 0) {
+    w0 = int32_t(floorMod(i0, size));
+    w1 = w0 + 1 == size ? 0 : w0 + 1;
+    return;
+  }
+  w0 = wrapIndex(w, i0, size);
+  w1 = wrapIndex(w, i0 + 1, size);
+}
+
+inline const uint8_t* texelPtr(const uint8_t* layerBase, const LevelRef& L, int32_t i, int32_t j, uint32_t bpt) {
+  if (i < 0 || j < 0) return nullptr;  // border texel (CLAMP_TO_BORDER)
+  return layerBase + (uint64_t(j) * uint32_t(L.w) + uint32_t(i)) * bpt;
+}
+
+// Adds one level's filtered value times `levelW` (total weight levelW * 2^16) to acc.
+template <Format F>
+inline void accumulateLevel(const Plan& p, const LevelRef& L, float s, float t, uint32_t layer, uint32_t levelW,
+                            Acc<F> acc[4]) {
+  constexpr uint32_t bpt = texelBytes(F);
+  const uint8_t* base = L.data + layer * L.layerStride;
+  // GL 4.6 §8.14.2: u = s * w_level, v = t * h_level, in float32 (spec-choices).
+  const float u = s * L.fw;
+  const float v = t * L.fh;
+  if (!p.linear) {
+    const int32_t i = wrapIndex(p.wrapS, nearestIndex(u), L.w);
+    const int32_t j = wrapIndex(p.wrapT, nearestIndex(v), L.h);
+    accumulate<F>(p, texelPtr(base, L, i, j, bpt), levelW * kWeightOne * kWeightOne, acc);
+    return;
+  }
+  const int64_t U = linearFixed(u), V = linearFixed(v);
+  const uint32_t a = uint32_t(U & 0xff), b = uint32_t(V & 0xff);
+  const int64_t i0 = U >> 8, j0 = V >> 8;  // arithmetic shift = floor division by 256
+  int32_t wi0, wi1, wj0, wj1;
+  wrapPair(p.wrapS, i0, L.w, wi0, wi1);
+  wrapPair(p.wrapT, j0, L.h, wj0, wj1);
+  const uint32_t na = kWeightOne - a, nb = kWeightOne - b;
+  // tau = (1-a)(1-b) t00 + a(1-b) t10 + (1-a) b t01 + a b t11 (GL 4.6 §8.14.2; rr's term order).
+  accumulate<F>(p, texelPtr(base, L, wi0, wj0, bpt), na * nb * levelW, acc);
+  accumulate<F>(p, texelPtr(base, L, wi1, wj0, bpt), a * nb * levelW, acc);
+  accumulate<F>(p, texelPtr(base, L, wi0, wj1, bpt), na * b * levelW, acc);
+  accumulate<F>(p, texelPtr(base, L, wi1, wj1, bpt), a * b * levelW, acc);
+}
+
+// One filtered lookup with a plan; expands to RGBA per GL 4.6 §15.2.1 Table 15.1
+// (R -> (r, 0, 0, 1), RG -> (r, g, 0, 1), depth without compare -> (d, 0, 0, 1)).
+template <Format F>
+inline void samplePlanned(const Plan& p, float s, float t, uint32_t layer, float out[4]) {
+  constexpr int C = Fmt<F>::kChannels;
+  if (layer > p.lastLayer) layer = p.lastLayer;  // defensive: callers pass a selected layer
+  Acc<F> acc[4] = {0, 0, 0, 0};
+  accumulateLevel<F>(p, p.lv[0], s, t, layer, p.levelWeight[0], acc);
+  if (p.levelCount == 2) accumulateLevel<F>(p, p.lv[1], s, t, layer, p.levelWeight[1], acc);
+  for (int c = 0; c < C; ++c) {
+    if constexpr (Fmt<F>::kUnorm) {
+      out[c] = float(double(acc[c]) / kUnormDenominator);  // the one conversion to float
+    } else {
+      out[c] = float(acc[c] * (1.0 / kTotalWeight));  // exact scaling, then one rounding
+    }
+  }
+  for (int c = C; c < 4; ++c) out[c] = c == 3 ? 1.0f : 0.0f;
+}
+
+// R32UI: integer textures are only ever point-sampled (completeness guarantees NEAREST filters).
+inline void samplePlannedUint(const Plan& p, float s, float t, uint32_t layer, float out[4]) {
+  if (layer > p.lastLayer) layer = p.lastLayer;
+  const LevelRef& L = p.lv[0];
+  const int32_t i = wrapIndex(p.wrapS, nearestIndex(s * L.fw), L.w);
+  const int32_t j = wrapIndex(p.wrapT, nearestIndex(t * L.fh), L.h);
+  uint32_t v = p.borderUint;
+  if (const uint8_t* tp = texelPtr(L.data + layer * L.layerStride, L, i, j, 4)) std::memcpy(&v, tp, 4);
+  out[0] = float(v);
+  out[1] = 0.0f;
+  out[2] = 0.0f;
+  out[3] = 1.0f;
+}
+
+// n lookups sharing one plan; one format dispatch for all of them.
+void sampleN(const TexUnit& u, const Plan& p, int n, const float* s, const float* t, const uint32_t* layers,
+             float (*out)[4]) {
+  if (!p.complete) {
+    for (int i = 0; i < n; ++i) writeIncomplete(out[i]);
+    return;
+  }
+  switch (u.tex->desc.format) {
+    case Format::RGBA8:
+      for (int i = 0; i < n; ++i) samplePlanned<Format::RGBA8>(p, s[i], t[i], layers[i], out[i]);
+      break;
+    case Format::R8:
+      for (int i = 0; i < n; ++i) samplePlanned<Format::R8>(p, s[i], t[i], layers[i], out[i]);
+      break;
+    case Format::RG32F:
+      for (int i = 0; i < n; ++i) samplePlanned<Format::RG32F>(p, s[i], t[i], layers[i], out[i]);
+      break;
+    case Format::RGBA32F:
+      for (int i = 0; i < n; ++i) samplePlanned<Format::RGBA32F>(p, s[i], t[i], layers[i], out[i]);
+      break;
+    case Format::D32F:
+      for (int i = 0; i < n; ++i) samplePlanned<Format::D32F>(p, s[i], t[i], layers[i], out[i]);
+      break;
+    case Format::R32UI:
+      for (int i = 0; i < n; ++i) samplePlannedUint(p, s[i], t[i], layers[i], out[i]);
+      break;
+    default:
+      for (int i = 0; i < n; ++i) writeIncomplete(out[i]);
+      break;
+  }
+}
+
+// 64x64 -> 128-bit product of two Q1.62 numbers, returned as Q2.62 (floor). Both branches compute
+// the same exact integer; the portable one serves compilers without __int128.
+inline uint64_t mulQ62(uint64_t a, uint64_t b) {
+#if defined(__SIZEOF_INT128__)
+  return uint64_t((static_cast<unsigned __int128>(a) * b) >> 62);
+#else
+  const uint64_t aLo = a & 0xffffffffu, aHi = a >> 32, bLo = b & 0xffffffffu, bHi = b >> 32;
+  const uint64_t ll = aLo * bLo, lh = aLo * bHi, hl = aHi * bLo, hh = aHi * bHi;
+  const uint64_t mid = (ll >> 32) + (lh & 0xffffffffu) + (hl & 0xffffffffu);
+  const uint64_t hi = hh + (lh >> 32) + (hl >> 32) + (mid >> 32);
+  const uint64_t lo = (mid << 32) | (ll & 0xffffffffu);
+  return (hi << 2) | (lo >> 62);
+#endif
+}
+
+// Implicit-LOD quad lookup shared by the 2D and 2D-array forms (layers: per pixel, already selected).
+void sampleQuadImpl(const TexUnit& u, const float s[4], const float t[4], const uint32_t layers[4], float bias,
+                    float out[4][4]) {
+  if (!isComplete(u.tex, u.sampler.state)) {
+    for (int i = 0; i < 4; ++i) writeIncomplete(out[i]);
+    return;
+  }
+  // GL 4.6 §8.14.1: u = s * w_base, v = t * h_base (the array layer is not part of rho).
+  // Coarse per-quad derivatives (spec-choices, llvmpipe's quad_lod): ddx = c[1] - c[0],
+  // ddy = c[2] - c[0], in double.
+  const double W = double(u.tex->desc.width), H = double(u.tex->desc.height);
+  const double dudx = (double(s[1]) - double(s[0])) * W;
+  const double dvdx = (double(t[1]) - double(t[0])) * H;
+  const double dudy = (double(s[2]) - double(s[0])) * W;
+  const double dvdy = (double(t[2]) - double(t[0])) * H;
+  const int32_t lambda8 = computeLambda(dudx, dvdx, dudy, dvdy, u.sampler, bias);
+  const Plan p = makePlan(u, lambda8);
+  sampleN(u, p, 4, s, t, layers, out);
+}
+
+}  // namespace
+
+SamplerQ SamplerQ::from(const SamplerState& s) {
+  SamplerQ q;
+  q.state = s;
+  q.minLod8 = quantizeLod(s.minLod);
+  q.maxLod8 = quantizeLod(s.maxLod);
+  q.bias8 = quantizeLod(s.lodBias);
+  return q;
+}
+
+int64_t log2Fixed(double x, int fracBits) {
+  constexpr int kBits = 24;  // fraction bits of the documented intermediate
+  if (!(x > 0.0)) return std::numeric_limits<int64_t>::min();  // log2 of 0 / negative / NaN
+  if (std::isinf(x)) return std::numeric_limits<int64_t>::max();
+  if (fracBits < 0) fracBits = 0;
+  // x = m * 2^e with m in [1, 2); frexp is exact (also for subnormals).
+  int e = 0;
+  const double fr = std::frexp(x, &e);  // fr in [0.5, 1)
+  e -= 1;
+  // m in Q1.62: fr * 2^63 is an integer < 2^63 (53 significant bits), exact.
+  uint64_t m = uint64_t(std::ldexp(fr, 63));
+  // log2(m) bit by bit: square m; if m^2 >= 2 the next bit is 1 and m^2 is halved. Each step
+  // truncates at 2^-62, so the bits are those of floor(2^k * log2(m)) up to an error < 2^-36 units
+  // of the 24th bit (exact for m = 1, i.e. for powers of two).
+  //
+  // Rounding: the spec rounds the 24-bit intermediate T = floor(2^24 log2 x) to fracBits bits. The
+  // first fracBits + 1 steps of the loop compute exactly the top bits P = T >> (23 - fracBits), and
+  // (T + 2^(23 - fracBits)) >> (24 - fracBits) == (P + 1) >> 1 for every T, so the loop stops after
+  // fracBits + 1 steps with a bit-identical result (8 steps instead of 24 for lambda).
+  // Round half up is right here: log2 of a double is an integer or irrational, so the exact value
+  // is never a tie, and a truncated value whose dropped bits read exactly 1/2 lies above the
+  // half-way point. The result is floor(2^fracBits * log2(x) + 1/2) = round-half-even of the exact
+  // value.
+  const int steps = fracBits < kBits ? fracBits + 1 : kBits;
+  int64_t f = 0;
+  for (int k = 0; k < steps; ++k) {
+    m = mulQ62(m, m);  // Q2.62, < 4
+    f <<= 1;
+    if (m >= (uint64_t(1) << 63)) {
+      f |= 1;
+      m >>= 1;
+    }
+  }
+  const int64_t floorValue = int64_t(e) * (int64_t(1) << steps) + f;  // floor(2^steps * log2 x)
+  if (fracBits >= kBits) return floorValue * (int64_t(1) << (fracBits - kBits));  // only 24 bits are computed
+  return (floorValue + 1) >> 1;  // arithmetic shift: floor division
+}
+
+int32_t computeLambda(double dudx, double dvdx, double dudy, double dvdy, const SamplerQ& s, float shaderBias) {
+  // GL 4.6 §8.14.1, exact form: rho^2 = max(ux^2 + vx^2, uy^2 + vy^2) in double (no sqrt needed),
+  // lambda_base = log2(rho) = 0.5 * log2(rho^2), so 256 * lambda_base = 128 * log2(rho^2):
+  // log2Fixed(rho^2, 7) is lambda_base in 8.8, rounded once.
+  int32_t base;
+  if (!std::isfinite(dudx) || !std::isfinite(dvdx) || !std::isfinite(dudy) || !std::isfinite(dvdy)) {
+    base = kLodMax;  // NaN / Inf derivatives: most minified (spec-choices)
+  } else {
+    const double rx = dudx * dudx + dvdx * dvdx;
+    const double ry = dudy * dudy + dvdy * dvdy;
+    const double rho2 = rx > ry ? rx : ry;
+    if (rho2 == 0.0) {
+      base = kLodMinusInf;  // GL: lambda = -inf for rho = 0 (also when rho^2 underflows)
+    } else if (std::isinf(rho2)) {
+      base = kLodMax;
+    } else {
+      base = int32_t(log2Fixed(rho2, kLodFracBits - 1));  // |value| <= 1075 * 128 < 2^18
+    }
+  }
+  // lambda' = lambda_base + clamp(bias_texobj + bias_shader, -MAX_TEXTURE_LOD_BIAS, +MAX_TEXTURE_LOD_BIAS).
+  constexpr int32_t kMaxBias8 = int32_t(kMaxLodBias * 256.0f);
+  int32_t bias = s.bias8 + quantizeLod(shaderBias);
+  if (bias < -kMaxBias8) bias = -kMaxBias8;
+  if (bias > kMaxBias8) bias = kMaxBias8;
+  int32_t lambda = base + bias;
+  // lambda = clamp(lambda', MIN_LOD, MAX_LOD). GL leaves MIN_LOD > MAX_LOD undefined; here MAX_LOD
+  // is applied last and wins, so lambda <= MAX_LOD always holds.
+  if (lambda < s.minLod8) lambda = s.minLod8;
+  if (lambda > s.maxLod8) lambda = s.maxLod8;
+  return lambda;
+}
+
+void sampleAtLambda(const TexUnit& u, float s, float t, uint32_t layer, int32_t lambda8, float out[4]) {
+  const Plan p = makePlan(u, lambda8);
+  float res[1][4];
+  sampleN(u, p, 1, &s, &t, &layer, res);
+  for (int c = 0; c < 4; ++c) out[c] = res[0][c];
+}
+
+void sampleQuad2D(const TexUnit& u, const float s[4], const float t[4], float bias, float out[4][4]) {
+  static constexpr uint32_t kLayer0[4] = {0, 0, 0, 0};
+  sampleQuadImpl(u, s, t, kLayer0, bias, out);
+}
+
+void sampleQuad2DArray(const TexUnit& u, const float s[4], const float t[4], const float r[4], float bias,
+                       float out[4][4]) {
+  const uint32_t layers = u.tex != nullptr ? u.tex->desc.layers : 1u;
+  const uint32_t l[4] = {selectLayer(r[0], layers), selectLayer(r[1], layers), selectLayer(r[2], layers),
+                         selectLayer(r[3], layers)};
+  sampleQuadImpl(u, s, t, l, bias, out);
+}
+
+void sampleGrad2DArray(const TexUnit& u, const float s[4], const float t[4], const float r[4], float dsdx,
+                       float dtdx, float dsdy, float dtdy, float out[4][4]) {
+  if (!isComplete(u.tex, u.sampler.state)) {
+    for (int i = 0; i < 4; ++i) writeIncomplete(out[i]);
+    return;
+  }
+  // textureGrad: explicit derivatives replace the implicit ones; there is no shader bias, but the
+  // sampler's bias still applies (GL 4.6 §8.14.1: bias_shader = 0 for the Grad functions).
+  const TextureDesc& d = u.tex->desc;
+  const double W = double(d.width), H = double(d.height);
+  const int32_t lambda8 = computeLambda(double(dsdx) * W, double(dtdx) * H, double(dsdy) * W, double(dtdy) * H,
+                                        u.sampler, 0.0f);
+  const uint32_t l[4] = {selectLayer(r[0], d.layers), selectLayer(r[1], d.layers), selectLayer(r[2], d.layers),
+                         selectLayer(r[3], d.layers)};
+  const Plan p = makePlan(u, lambda8);
+  sampleN(u, p, 4, s, t, l, out);
+}
+
+uint32_t selectLayer(float r, uint32_t layers) {
+  // EXT_texture_array / GL 4.6 §8.14.2: layer = clamp(floor(r + 1/2), 0, d - 1), r + 1/2 in float32.
+  // r = k + 1/2 selects k + 1 (floor rule; llvmpipe's round-half-even may pick k: ambiguous in GL).
+  if (layers == 0) return 0;
+  const float rr = r + 0.5f;
+  if (std::isnan(rr) || rr < 0.0f) return 0;
+  const float last = float(layers - 1);  // exact (<= 2048)
+  const float fl = std::floor(rr);
+  return fl >= last ? layers - 1 : uint32_t(fl);
+}
+
+namespace {
+
+// The texel bytes and count N seen by texelFetch (GL 4.6 §8.9: N = min(floor(size / texelBytes),
+// MAX_TEXTURE_BUFFER_SIZE) for buffer textures; level 0, layer 0 as a linear index for 2D textures).
+const uint8_t* fetchBase(const TextureData& tex, uint64_t& n) {
+  const uint32_t bpt = texelBytes(tex.desc.format);
+  if (tex.desc.kind == TextureKind::Buffer) {
+    if (tex.buffer == nullptr || bpt == 0) {
+      n = 0;
+      return nullptr;
+    }
+    n = tex.buffer->bytes.size() / bpt;
+    if (n > kMaxBufferTextureTexels) n = kMaxBufferTextureTexels;
+    return tex.buffer->bytes.data();
+  }
+  if (tex.levels.empty() || tex.desc.layers == 0) {
+    n = 0;
+    return nullptr;
+  }
+  n = uint64_t(levelWidth(tex.desc, 0)) * levelHeight(tex.desc, 0);
+  return tex.levels[0].data();
+}
+
+}  // namespace
+
+void fetchBuffer(const TexUnit& u, int64_t index, float out[4]) {
+  if (u.tex == nullptr) {  // no texture: incomplete (GL 4.6 §11.1.3.5)
+    writeIncomplete(out);
+    return;
+  }
+  uint64_t n = 0;
+  const uint8_t* base = fetchBase(*u.tex, n);
+  // Out of range (undefined in GL without robustness): (0, 0, 0, 0), as llvmpipe and robust access.
+  if (base == nullptr || index < 0 || uint64_t(index) >= n) {
+    for (int c = 0; c < 4; ++c) out[c] = 0.0f;
+    return;
+  }
+  const Format fmt = u.tex->desc.format;
+  const uint8_t* p = base + uint64_t(index) * texelBytes(fmt);
+  const int channels = channelCount(fmt);
+  for (int c = 0; c < 4; ++c) out[c] = c == 3 ? 1.0f : 0.0f;  // Table 15.1 expansion
+  for (int c = 0; c < channels; ++c) {
+    if (isUnorm(fmt)) {
+      out[c] = float(double(p[c]) / 255.0);  // same value as the filtered path's v * 2^24 / (255 * 2^24)
+    } else if (isFloat(fmt)) {
+      out[c] = loadF32(p + 4 * c);
+    } else {
+      uint32_t v;
+      std::memcpy(&v, p + 4 * c, 4);
+      out[c] = float(v);
+    }
+  }
+}
+
+uint32_t fetchBufferUint(const TexUnit& u, int64_t index) {
+  // Exact integer texelFetch for R32UI; other formats (not readable through a usampler) return 0,
+  // and so do out-of-range indices and a missing texture.
+  if (u.tex == nullptr || !isInteger(u.tex->desc.format)) return 0;
+  uint64_t n = 0;
+  const uint8_t* base = fetchBase(*u.tex, n);
+  if (base == nullptr || index < 0 || uint64_t(index) >= n) return 0;
+  uint32_t v;
+  std::memcpy(&v, base + uint64_t(index) * 4, 4);
+  return v;
+}
+
+int32_t wrapCoord(Wrap w, int64_t i, int32_t size) { return wrapIndex(w, i, size); }
+
+}  // namespace tessera

@@ -1,0 +1,175 @@
+#include "raster/setup.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tessera::detail {
+
+int64_t roundHalfEven(double v) {
+  const double f = std::floor(v);
+  const double diff = v - f;  // exact: v and f are within one unit of each other
+  int64_t i = int64_t(f);
+  if (diff > 0.5 || (diff == 0.5 && (i & 1))) ++i;
+  return i;
+}
+
+namespace {
+
+struct WindowVertex {
+  int64_t x, y;  // sub-pixels
+  double invW;
+  float z;
+  const double* var;     // clipped varyings (double) or nullptr
+  const float* varF;     // unclipped varyings (float) or nullptr
+};
+
+inline int64_t floorDiv(int64_t a, int64_t b) {
+  int64_t q = a / b;
+  if ((a % b != 0) && ((a < 0) != (b < 0))) --q;
+  return q;
+}
+
+// Bins a snapped triangle given window vertices in submission order.
+void binTriangle(WindowVertex w0, WindowVertex w1, WindowVertex w2, const VertexOut& provoking, uint32_t primitiveId,
+                 uint32_t layer, const SetupParams& params, Scene& scene, PipelineStats& stats, bool& binned) {
+  // Doubled signed area from the snapped coordinates (GL 4.6 §14.6.1, eq. 14.8 in window space).
+  const int64_t area2 = (w1.x - w0.x) * (w2.y - w0.y) - (w2.x - w0.x) * (w1.y - w0.y);
+  if (area2 == 0) return;  // degenerate after snapping: no fragments (docs/spec-choices.md)
+  const bool ccw = area2 > 0;
+  const bool front = ccw == params.raster.frontCcw;
+  if (params.raster.cull == CullMode::Back && !front) return;
+  if (params.raster.cull == CullMode::Front && front) return;
+  if (!ccw) std::swap(w1, w2);  // edge functions below assume counter-clockwise order
+
+  TriSetup t;
+  t.area2 = ccw ? area2 : -area2;
+  const WindowVertex* wv[3] = {&w0, &w1, &w2};
+  for (int i = 0; i < 3; ++i) {
+    // Edge opposite vertex i runs from vertex i+1 to vertex i+2.
+    const WindowVertex& p = *wv[(i + 1) % 3];
+    const WindowVertex& q = *wv[(i + 2) % 3];
+    t.a[i] = p.y - q.y;
+    t.b[i] = q.x - p.x;
+    t.c[i] = p.x * q.y - q.x * p.y;
+    // Fill rule: a sample exactly on an edge belongs to the triangle iff the edge is a left edge
+    // (it runs downwards in y-up window space: a > 0) or a bottom edge (horizontal, running in +x:
+    // a == 0 && b > 0). This is GL's "left + bottom" as rr and llvmpipe produce it.
+    const bool inclusive = t.a[i] > 0 || (t.a[i] == 0 && t.b[i] > 0);
+    t.bias[i] = inclusive ? 0 : 1;
+    t.invW[i] = wv[i]->invW;
+    t.z[i] = wv[i]->z;
+    for (int k = 0; k < params.varyings; ++k)
+      t.var[i][k] = wv[i]->var ? float(wv[i]->var[k]) : wv[i]->varF[k];
+  }
+
+  // Pixel bounds: pixel X is a candidate iff its centre X*256 + 128 lies within [min, max].
+  const int64_t minx = std::min({w0.x, w1.x, w2.x}), maxx = std::max({w0.x, w1.x, w2.x});
+  const int64_t miny = std::min({w0.y, w1.y, w2.y}), maxy = std::max({w0.y, w1.y, w2.y});
+  const Rect& r = params.clampRect;
+  const int64_t x0 = std::max<int64_t>(floorDiv(minx - kSubpixelHalf + kSubpixelOne - 1, kSubpixelOne), r.x);
+  const int64_t x1 = std::min<int64_t>(floorDiv(maxx - kSubpixelHalf, kSubpixelOne), int64_t(r.x) + r.w - 1);
+  const int64_t y0 = std::max<int64_t>(floorDiv(miny - kSubpixelHalf + kSubpixelOne - 1, kSubpixelOne), r.y);
+  const int64_t y1 = std::min<int64_t>(floorDiv(maxy - kSubpixelHalf, kSubpixelOne), int64_t(r.y) + r.h - 1);
+  if (x0 > x1 || y0 > y1) return;
+  t.minX = int32_t(x0), t.maxX = int32_t(x1), t.minY = int32_t(y0), t.maxY = int32_t(y1);
+
+  for (int k = 0; k < kMaxFlatVaryings; ++k) t.flat[k] = provoking.flat[k];
+  t.primitiveId = primitiveId;
+  t.layer = layer;
+  t.drawState = params.stateIndex;
+  t.frontFacing = front;
+
+  const uint32_t index = uint32_t(scene.tris.size());
+  bool any = false;
+  for (int32_t ty = t.minY >> kTileOrder; ty <= (t.maxY >> kTileOrder); ++ty) {
+    for (int32_t tx = t.minX >> kTileOrder; tx <= (t.maxX >> kTileOrder); ++tx) {
+      // Trivial reject: the largest value of each edge function over the tile's sample points.
+      const int64_t sx0 = (int64_t(tx) << (kTileOrder + kSubpixelBits)) + kSubpixelHalf;
+      const int64_t sy0 = (int64_t(ty) << (kTileOrder + kSubpixelBits)) + kSubpixelHalf;
+      const int64_t span = int64_t(kTileSize - 1) << kSubpixelBits;
+      bool reject = false;
+      for (int i = 0; i < 3 && !reject; ++i) {
+        const int64_t sx = t.a[i] > 0 ? sx0 + span : sx0;
+        const int64_t sy = t.b[i] > 0 ? sy0 + span : sy0;
+        reject = t.a[i] * sx + t.b[i] * sy + t.c[i] - t.bias[i] < 0;
+      }
+      if (reject) continue;
+      scene.bins[size_t(ty) * size_t(scene.tilesX) + size_t(tx)].push_back({TileOp::Triangle, index});
+      any = true;
+    }
+  }
+  if (!any) return;
+  scene.tris.push_back(t);
+  ++stats.triangles_binned;
+  binned = true;
+}
+
+// Perspective division, viewport transform (GL 4.6 §13.8, in the order rr uses: divide first,
+// then scale and offset) and snapping.
+inline WindowVertex toWindow(const double pos[4], const Rect& vp) {
+  const double invW = 1.0 / pos[3];
+  const double xd = pos[0] * invW, yd = pos[1] * invW, zd = pos[2] * invW;
+  const double halfW = 0.5 * vp.w, halfH = 0.5 * vp.h;
+  const double xw = xd * halfW + (vp.x + halfW);
+  const double yw = yd * halfH + (vp.y + halfH);
+  // Depth range [0, 1]: zw = zd / 2 + 1/2, clamped (GL 4.6 §13.8.1; clipping already bounds it up
+  // to rounding).
+  double zw = zd * 0.5 + 0.5;
+  zw = std::clamp(zw, 0.0, 1.0);
+  WindowVertex w;
+  w.x = roundHalfEven(xw * double(kSubpixelOne));
+  w.y = roundHalfEven(yw * double(kSubpixelOne));
+  w.invW = invW;
+  w.z = float(zw);
+  w.var = nullptr;
+  w.varF = nullptr;
+  return w;
+}
+
+}  // namespace
+
+void setupTriangle(const VertexOut (&v)[3], uint32_t primitiveId, uint32_t layer, const SetupParams& params,
+                   Scene& scene, PipelineStats& stats) {
+  ++stats.primitives_assembled;
+  const ClipResult cr = classifyTriangle(v, params.raster.clipMask);
+  if (cr == ClipResult::Outside) {
+    ++stats.primitives_culled;
+    return;
+  }
+  bool binned = false;
+  if (cr == ClipResult::Inside) {
+    WindowVertex w[3];
+    // w == 0 passes every clip plane only at the clip-space origin; the vertex has no window
+    // position, so the primitive is dropped (GL leaves it undefined).
+    if (!(v[0].pos[3] > 0.0f && v[1].pos[3] > 0.0f && v[2].pos[3] > 0.0f)) {
+      ++stats.primitives_culled;
+      return;
+    }
+    for (int i = 0; i < 3; ++i) {
+      const double pos[4] = {v[i].pos[0], v[i].pos[1], v[i].pos[2], v[i].pos[3]};
+      w[i] = toWindow(pos, params.viewport);
+      w[i].varF = v[i].var;
+    }
+    binTriangle(w[0], w[1], w[2], v[2], primitiveId, layer, params, scene, stats, binned);
+  } else {
+    ++stats.primitives_clipped;
+    ClipVertex poly[kMaxClipPolygon];
+    const int n = clipTriangle(v, params.raster.clipMask, params.varyings, poly);
+    WindowVertex w[kMaxClipPolygon];
+    for (int i = 0; i < n; ++i)
+      if (!(poly[i].pos[3] > 0.0)) {
+        ++stats.primitives_culled;
+        return;
+      }
+    for (int i = 0; i < n; ++i) {
+      w[i] = toWindow(poly[i].pos, params.viewport);
+      w[i].var = poly[i].var;
+    }
+    // Fan from the first vertex; every sub-triangle keeps the primitive's provoking vertex and id.
+    for (int i = 1; i + 1 < n; ++i)
+      binTriangle(w[0], w[i], w[i + 1], v[2], primitiveId, layer, params, scene, stats, binned);
+  }
+  if (!binned) ++stats.primitives_culled;
+}
+
+}  // namespace tessera::detail

@@ -1,0 +1,32 @@
+// Triangle setup and binning (the "setup" half of the backend, like llvmpipe's lp_setup_tri.c).
+//
+// Implements, per assembled triangle: clipping (clip.h), perspective division and the viewport
+// transform in double (GL 4.6 §13.8), snapping to 8 sub-pixel bits with round-half-to-even, face
+// determination and culling from the snapped signed area (§14.6.1), counter-clockwise ordering,
+// int64 edge functions with the left/bottom fill rule, the pixel bounding box clamped to
+// viewport ∩ scissor ∩ target, and binning into every 64x64 tile the triangle can touch.
+// Does not implement: vertex shading or pixel work.
+#pragma once
+
+#include "raster/clip.h"
+#include "raster/pipeline.h"
+
+namespace tessera::detail {
+
+struct SetupParams {
+  Rect viewport;
+  Rect clampRect;          // viewport ∩ scissor ∩ target, in pixels
+  RasterState raster;
+  uint32_t stateIndex = 0; // Scene::states index of the draw
+  int varyings = 0;
+};
+
+// Sets up one triangle (after the vertex/geometry stages) and bins what survives.
+void setupTriangle(const VertexOut (&v)[3], uint32_t primitiveId, uint32_t layer, const SetupParams& params,
+                   Scene& scene, PipelineStats& stats);
+
+// Round half to even of a finite double to int64 (the snapping rule; never depends on the FPU
+// rounding mode).
+int64_t roundHalfEven(double v);
+
+}  // namespace tessera::detail

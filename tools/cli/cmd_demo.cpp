@@ -1,0 +1,132 @@
+// `tessera demo`: the main job on built-in defaults. Renders every built-in scene, writes its images
+// and stats, re-renders it on one thread to show the bytes do not depend on the thread count, and
+// writes report.json plus an index.html to look at.
+#include <tbb/info.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "tools/cli/commands.h"
+#include "tools/cli/frame_job.h"
+#include "tools/scenes/scenes.h"
+
+namespace tessera::cli {
+
+namespace {
+
+struct DemoArgs {
+  std::string outDir = "out/demo";
+  int threads = 0;
+  bool checkThreads = true;
+};
+
+std::string htmlEscape(const std::string& s) {
+  std::string o;
+  for (char c : s) {
+    switch (c) {
+      case '<': o += "&lt;"; break;
+      case '>': o += "&gt;"; break;
+      case '&': o += "&amp;"; break;
+      default: o += c;
+    }
+  }
+  return o;
+}
+
+void runDemo(const DemoArgs& a) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(a.outDir, ec);
+  if (ec) throw Error(a.outDir + ": cannot create the output directory: " + ec.message());
+  const int threads = a.threads > 0 ? a.threads : int(tbb::info::default_concurrency());
+  nlohmann::json report;
+  report["threads"] = threads;
+  nlohmann::json scenesJson = nlohmann::json::array();
+  std::string rows;
+  bool allAgree = true;
+  const auto& all = scenes::all();
+  for (size_t i = 0; i < all.size(); ++i) {
+    const scenes::SceneInfo& s = all[i];
+    const std::string name(s.name);
+    std::fprintf(stderr, "[%zu/%zu] %-16s ", i + 1, all.size(), name.c_str());
+    const CommandList list = scenes::build(s.name, s.width, s.height);
+    FrameJob job;
+    job.name = name;
+    job.threads = threads;
+    job.imagePath = a.outDir + "/" + name + ".png";
+    job.statsPath = a.outDir + "/" + name + ".json";
+    job.recordPath = a.outDir + "/" + name + ".tframe";
+    nlohmann::json stats = runFrame(list, job);
+    nlohmann::json entry = {{"scene", name},
+                            {"rule", std::string(s.rule)},
+                            {"stats", name + ".json"},
+                            {"frame", name + ".tframe"},
+                            {"image_sha256", stats["image_sha256"]},
+                            {"oracle_ms", stats["timing"]["oracle_ms"]},
+                            {"draw_calls", stats["counters"]["draw_calls"]},
+                            {"texture_state_changes", stats["counters"]["texture_state_changes"]},
+                            {"triangles_binned", stats["pipeline"]["triangles_binned"]}};
+    if (a.checkThreads && threads != 1) {
+      FrameJob one;
+      one.name = name;
+      one.threads = 1;
+      const nlohmann::json single = runFrame(list, one);
+      bool agree = true;
+      for (size_t k = 0; k < stats["images"].size(); ++k)
+        agree = agree && single["images"][k]["image_sha256"] == stats["images"][k]["image_sha256"];
+      entry["bit_identical_1_vs_n_threads"] = agree;
+      entry["oracle_ms_1_thread"] = single["timing"]["oracle_ms"];
+      allAgree = allAgree && agree;
+    }
+    std::fprintf(stderr, "%8.1f ms  %s\n", stats["timing"]["oracle_ms"].get<double>(),
+                 std::string(stats["image_sha256"]).substr(0, 16).c_str());
+    std::string imgs;
+    for (const auto& img : stats["images"]) {
+      const std::string file = fs::path(img["file"].get<std::string>()).filename().string();
+      if (file.ends_with(".png"))
+        imgs += fmt::format("<img src=\"{}\" title=\"{}\">", file, htmlEscape(file));
+      else
+        imgs += fmt::format("<a href=\"{}\">{}</a> ", file, htmlEscape(file));
+    }
+    rows += fmt::format(
+        "<tr><td><b>{}</b><br><small>{}</small></td><td>{}</td><td>{}</td><td>{}</td><td>{:.1f}</td>"
+        "<td><code>{}</code></td></tr>\n",
+        htmlEscape(name), htmlEscape(std::string(s.rule)), imgs, stats["counters"]["draw_calls"].dump(),
+        stats["counters"]["texture_state_changes"].dump(), stats["timing"]["oracle_ms"].get<double>(),
+        std::string(stats["image_sha256"]).substr(0, 16));
+    scenesJson.push_back(entry);
+  }
+  report["scenes"] = scenesJson;
+  report["bit_identical_1_vs_n_threads"] = allAgree;
+  writeTextFile(a.outDir + "/report.json", report.dump(2) + "\n");
+  const std::string html = fmt::format(
+      "<!doctype html><meta charset=utf-8><title>Tessera demo</title>"
+      "<style>body{{font-family:sans-serif}}img{{image-rendering:pixelated;width:256px;margin:2px;"
+      "border:1px solid #888}}td{{vertical-align:top;padding:4px}}</style>"
+      "<h1>Tessera demo: built-in scenes on the oracle</h1><p>{} threads; bytes identical at 1 thread: {}</p>"
+      "<table border=1 cellspacing=0><tr><th>scene</th><th>images</th><th>draw calls</th>"
+      "<th>texture state changes</th><th>ms</th><th>image sha256</th></tr>\n{}</table>\n",
+      threads, allAgree ? "yes" : "NO", rows);
+  writeTextFile(a.outDir + "/index.html", html);
+  std::fprintf(stderr, "wrote %s/report.json and %s/index.html\n", a.outDir.c_str(), a.outDir.c_str());
+  std::printf("%s\n", report.dump(2).c_str());
+  if (!allAgree) throw Error("demo: some scene rendered different bytes at 1 thread than at " + std::to_string(threads));
+}
+
+}  // namespace
+
+void addDemoCommand(CLI::App& app) {
+  auto a = std::make_shared<DemoArgs>();
+  auto* demo = app.add_subcommand("demo", "Render every built-in scene with its counters; write images, "
+                                          "stats, report.json and index.html");
+  demo->add_option("-o,--output", a->outDir, "Output directory")->capture_default_str();
+  demo->add_option("--threads", a->threads, "Worker threads (0 = all cores)")->check(CLI::Range(0, 1024));
+  demo->add_flag("!--no-thread-check", a->checkThreads, "Skip the 1-thread re-render that checks bit-identity");
+  demo->callback([a] { runDemo(*a); });
+}
+
+}  // namespace tessera::cli

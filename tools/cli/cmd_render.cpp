@@ -1,0 +1,104 @@
+// `tessera scenes | render | replay | validate`.
+#include <cstdio>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "raster/serialize.h"
+#include "raster/validate.h"
+#include "tools/cli/commands.h"
+#include "tools/cli/frame_job.h"
+#include "tools/scenes/scenes.h"
+
+namespace tessera::cli {
+
+namespace {
+
+struct RenderArgs {
+  std::string target;
+  std::string size;
+  FrameJob job;
+};
+
+void addJobOptions(CLI::App* c, RenderArgs& a) {
+  c->add_option("--threads", a.job.threads, "Worker threads (0 = all cores). The image bytes do not depend on it.")
+      ->check(CLI::Range(0, 1024));
+  c->add_option("-o,--output", a.job.imagePath,
+                "Image file for the presented target (PNG for RGBA8/R8, EXR for float and id targets); further "
+                "attachments and layers get .aN / .lN suffixes");
+  c->add_option("--stats", a.job.statsPath,
+                "Write the stats JSON here (counters, pipeline counts, image_sha256 per image, timing)");
+}
+
+}  // namespace
+
+void addRenderCommands(CLI::App& app) {
+  auto* scenes = app.add_subcommand("scenes", "List the built-in scenes and the rule each one checks");
+  scenes->callback([] {
+    for (const scenes::SceneInfo& s : scenes::all())
+      std::printf("%-16s %4dx%-4d  %s\n", std::string(s.name).c_str(), s.width, s.height, std::string(s.rule).c_str());
+  });
+
+  auto ra = std::make_shared<RenderArgs>();
+  auto* render = app.add_subcommand("render", "Render a built-in scene on the oracle");
+  render->add_option("scene", ra->target, "Scene name (see `tessera scenes`)")->required();
+  render->add_option("--size", ra->size, "Target size WxH (default: the scene's own size)");
+  render->add_option("--record", ra->job.recordPath, "Also record the frame as a .tframe file (replayable anywhere)");
+  addJobOptions(render, *ra);
+  render->callback([ra] {
+    const scenes::SceneInfo* info = scenes::find(ra->target);
+    int w = info ? info->width : 0, h = info ? info->height : 0;
+    if (!ra->size.empty()) std::tie(w, h) = parseSize(ra->size, "--size");
+    const CommandList list = scenes::build(ra->target, w, h);  // throws for unknown names
+    FrameJob job = ra->job;
+    job.name = ra->target;
+    std::printf("%s\n", runFrame(list, job).dump(2).c_str());
+  });
+
+  auto rp = std::make_shared<RenderArgs>();
+  auto* replay = app.add_subcommand("replay", "Render a recorded .tframe file on the oracle");
+  replay->add_option("frame", rp->target, "A .tframe file written by `render --record`")->required();
+  addJobOptions(replay, *rp);
+  replay->callback([rp] {
+    const CommandList list = readFrame(rp->target);
+    FrameJob job = rp->job;
+    job.name = rp->target;
+    std::printf("%s\n", runFrame(list, job).dump(2).c_str());
+  });
+
+  auto hp = std::make_shared<std::string>();
+  auto* hashes = app.add_subcommand(
+      "hashes", "Render every built-in scene at its default size and print {scene: [image_sha256...]} as JSON; "
+                "golden/scene_hashes.json is this output, checked bit-exactly by the tests of every build type");
+  hashes->add_option("-o,--output", *hp, "Write the JSON to this file (atomically) instead of stdout");
+  hashes->callback([hp] {
+    nlohmann::json j = nlohmann::json::object();
+    for (const scenes::SceneInfo& s : scenes::all()) {
+      FrameJob job;
+      job.name = std::string(s.name);
+      const nlohmann::json r = runFrame(scenes::build(s.name, s.width, s.height), job);
+      nlohmann::json list = nlohmann::json::array();
+      for (const auto& img : r["images"]) list.push_back(img["image_sha256"]);
+      j[job.name] = list;
+    }
+    if (hp->empty())
+      std::printf("%s\n", j.dump(2).c_str());
+    else
+      writeTextFile(*hp, j.dump(2) + "\n");
+  });
+
+  auto vp = std::make_shared<std::string>();
+  auto* validateCmd = app.add_subcommand("validate", "Check a .tframe file and list every problem found (exit 1 if any)");
+  validateCmd->add_option("frame", *vp, "A .tframe file")->required();
+  validateCmd->callback([vp] {
+    const CommandList list = readFrame(*vp);
+    const auto diags = validate(list);
+    for (const Diagnostic& d : diags)
+      if (d.command < list.commands().size()) std::printf("%s: command %zu (%s): %s\n", vp->c_str(), d.command,
+                  std::string(commandName(list.commands()[d.command].index())).c_str(), d.message.c_str());
+    std::printf("%s: %zu commands, %zu problems\n", vp->c_str(), list.commands().size(), diags.size());
+    if (!diags.empty()) throw CLI::RuntimeError(1);
+  });
+}
+
+}  // namespace tessera::cli

@@ -1,0 +1,11 @@
+// Subcommand registration for the `tessera` CLI: each file adds its subcommands to the app.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace tessera::cli {
+
+void addRenderCommands(CLI::App& app);  // scenes, render, replay, validate (cmd_render.cpp)
+void addDemoCommand(CLI::App& app);     // demo (cmd_demo.cpp)
+
+}  // namespace tessera::cli

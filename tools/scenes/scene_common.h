@@ -1,0 +1,26 @@
+// Internal to the scenes library: the scene functions and the frame preamble they share.
+#pragma once
+
+#include "tools/scenes/builder.h"
+
+namespace tessera::scenes {
+
+struct Frame {
+  ResourceId color = kNone, depth = kNone;
+};
+// Creates an RGBA8 colour target (and a D32F depth target), binds it, sets the full viewport and
+// clears colour (and depth to 1).
+Frame beginFrame(CommandList& cl, int w, int h, bool withDepth, std::array<float, 4> clear);
+
+void buildFillFan(CommandList& cl, int w, int h);
+void buildMipTunnel(CommandList& cl, int w, int h);
+void buildWrapFilter(CommandList& cl, int w, int h);
+void buildTextureArray(CommandList& cl, int w, int h);
+void buildLayeredTarget(CommandList& cl, int w, int h);
+void buildClipPlanes(CommandList& cl, int w, int h);
+void buildBlend(CommandList& cl, int w, int h);
+void buildDepth(CommandList& cl, int w, int h);
+void buildCityBlock(CommandList& cl, int w, int h);
+void buildCityIds(CommandList& cl, int w, int h);
+
+}  // namespace tessera::scenes

@@ -1,0 +1,74 @@
+#include "tools/scenes/scenes.h"
+
+#include "tools/scenes/scene_common.h"
+
+namespace tessera::scenes {
+namespace {
+using BuildFn = void (*)(CommandList&, int, int);
+struct Entry {
+  SceneInfo info;
+  BuildFn build;
+};
+const std::vector<Entry>& entries() {
+  static const std::vector<Entry> e = {
+      {{"fill_fan", "fill rule: fans whose edges pass exactly through pixel centres, additive blend shows gaps or double hits", 128, 128}, buildFillFan},
+      {{"mip_tunnel", "LOD: a perspective tunnel over a texture whose levels have distinct tints, trilinear and nearest-mip halves", 256, 256}, buildMipTunnel},
+      {{"wrap_filter", "every wrap mode x NEAREST / LINEAR / LINEAR_MIPMAP_LINEAR on texcoords from -1.5 to 2.5, border colour", 256, 192}, buildWrapFilter},
+      {{"texture_array", "texture-array batching: 3 arrays of different sizes, a TAM buffer texture, one draw call", 256, 256}, buildTextureArray},
+      {{"layered_target", "render-to-texture-atlas: objects displaced into regions of a 2-layer array target, then shown", 256, 128}, buildLayeredTarget},
+      {{"clip_planes", "user clip distances: three enabled planes cutting a colour-ramp fan, plus near-plane clipping", 192, 192}, buildClipPlanes},
+      {{"blend", "blending: every equation and a set of factors over a gradient, in RGBA8", 256, 128}, buildBlend},
+      {{"depth", "depth: interpenetrating triangles under LESS, then GEQUAL / EQUAL / ALWAYS passes", 192, 192}, buildDepth},
+      {{"city_block", "a textured city block: 256 facade textures, depth, ~60k triangles, one bind per facade", 320, 240}, buildCityBlock},
+      {{"city_ids", "the city block through the object_id program into two R32UI targets (object id, primitive id)", 320, 240}, buildCityIds},
+  };
+  return e;
+}
+}  // namespace
+
+const std::vector<SceneInfo>& all() {
+  static const std::vector<SceneInfo> infos = [] {
+    std::vector<SceneInfo> v;
+    for (const Entry& e : entries()) v.push_back(e.info);
+    return v;
+  }();
+  return infos;
+}
+
+const SceneInfo* find(std::string_view name) {
+  for (const SceneInfo& s : all())
+    if (s.name == name) return &s;
+  return nullptr;
+}
+
+CommandList build(std::string_view name, int width, int height) {
+  for (const Entry& e : entries())
+    if (e.info.name == name) {
+      if (width < 1 || height < 1 || width > kMaxTextureSize || height > kMaxTextureSize)
+        throw Error("scene " + std::string(name) + ": size " + std::to_string(width) + "x" +
+                    std::to_string(height) + " is outside 1..16384");
+      CommandList cl;
+      cl.marker("scene " + std::string(name));
+      e.build(cl, width, height);
+      return cl;
+    }
+  std::string known;
+  for (const Entry& e : entries()) known += (known.empty() ? "" : ", ") + std::string(e.info.name);
+  throw Error("unknown scene '" + std::string(name) + "' (known: " + known + ")");
+}
+
+Frame beginFrame(CommandList& cl, int w, int h, bool withDepth, std::array<float, 4> clear) {
+  Frame f;
+  f.color = createTarget(cl, Format::RGBA8, w, h);
+  if (withDepth) f.depth = createTarget(cl, Format::D32F, w, h);
+  RenderTarget t;
+  t.color[0] = f.color;
+  t.depth = f.depth;
+  cl.setRenderTarget(t);
+  cl.setViewport({0, 0, w, h});
+  cl.clearColor(0, clear);
+  if (withDepth) cl.clearDepth(1.0f);
+  return f;
+}
+
+}  // namespace tessera::scenes
