@@ -72,7 +72,8 @@ class Counter {
 
   void count(const BindTexture& b) {
     ++c_.texture_binds;
-    const bool redundant = Tally{&c_.texture_state_changes, &c_.redundant_texture_binds}.set(units_[b.unit].texture, b.texture);
+    const bool redundant =
+        Tally{&c_.texture_state_changes, &c_.redundant_texture_binds}.set(units_[b.unit].texture, b.texture);
     if (b.unit < uint32_t(kMaxTextureUnits)) {
       UnitCounters& u = c_.units[b.unit];
       ++u.texture_binds;
@@ -81,7 +82,8 @@ class Counter {
   }
   void count(const BindSampler& b) {
     ++c_.sampler_binds;
-    const bool redundant = Tally{&c_.sampler_state_changes, &c_.redundant_sampler_binds}.set(units_[b.unit].sampler, b.sampler);
+    const bool redundant =
+        Tally{&c_.sampler_state_changes, &c_.redundant_sampler_binds}.set(units_[b.unit].sampler, b.sampler);
     if (b.unit < uint32_t(kMaxTextureUnits)) {
       UnitCounters& u = c_.units[b.unit];
       ++u.sampler_binds;
@@ -129,12 +131,8 @@ class Counter {
   void count(const SetVertexLayout& s) {
     Tally{&c_.vertex_layout_changes, &c_.redundant_vertex_layout_sets}.set(layout_, s.layout);
   }
-  void count(const SetViewport& s) {
-    Tally{&c_.viewport_changes, &c_.redundant_viewport_sets}.set(viewport_, s.rect);
-  }
-  void count(const SetScissor& s) {
-    Tally{&c_.scissor_changes, &c_.redundant_scissor_sets}.set(scissor_, s.state);
-  }
+  void count(const SetViewport& s) { Tally{&c_.viewport_changes, &c_.redundant_viewport_sets}.set(viewport_, s.rect); }
+  void count(const SetScissor& s) { Tally{&c_.scissor_changes, &c_.redundant_scissor_sets}.set(scissor_, s.state); }
   void count(const SetDepthState& s) {
     Tally{&c_.depth_state_changes, &c_.redundant_depth_state_sets}.set(depth_, s.state);
   }
@@ -171,6 +169,7 @@ class Counter {
 
 // Every FrameCounters member except `units`, once: the JSON keys come from this list. The
 // static_assert below fails when a member is added to the struct but not here.
+// clang-format off
 #define TESSERA_FRAME_COUNTERS(X)                                                                              \
   X(commands) X(draw_calls) X(indexed_draw_calls) X(vertices_submitted) X(primitives_submitted)               \
   X(texture_binds) X(texture_state_changes) X(redundant_texture_binds) X(sampler_binds)                       \
@@ -183,6 +182,7 @@ class Counter {
   X(blend_state_changes) X(redundant_blend_state_sets) X(raster_state_changes) X(redundant_raster_state_sets)  \
   X(state_changes) X(redundant_state_changes) X(clears) X(textures_created) X(buffers_created)                \
   X(samplers_created) X(programs_created) X(bytes_uploaded) X(texture_bytes_uploaded) X(buffer_bytes_uploaded)
+// clang-format on
 
 #define TESSERA_PLUS_ONE(name) +1
 static_assert(sizeof(FrameCounters) ==

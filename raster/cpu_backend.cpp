@@ -9,6 +9,7 @@
 #include <cstring>
 #include <map>
 
+#include "raster/provenance.h"
 #include "raster/rast.h"
 #include "raster/setup.h"
 #include "raster/validate.h"
@@ -142,6 +143,10 @@ struct CpuBackend::Impl {
     target = t;
     targetBound = true;
     scene.begin(resolveTarget(t));
+    scene.provenance = options.provenance;
+    if (options.provenance)
+      for (TextureData* c : scene.target.color)
+        if (c && !c->prov) c->prov = std::make_shared<Provenance>(*c);
   }
 
   Rect clampRect() const {
@@ -179,6 +184,7 @@ struct CpuBackend::Impl {
     ds->depth = depth;
     ds->blend = blend;
     ds->varyings = ds->program->varyingCount();
+    ds->clampRect = clampRect();
     ds->colorOutputs = std::min(ds->program->colorOutputs(), kMaxColorAttachments);
     return ds;
   }
@@ -250,6 +256,7 @@ struct CpuBackend::Impl {
     params.raster = raster;
     params.stateIndex = stateIndex;
     params.varyings = ds.varyings;
+    params.provenance = options.provenance;
     const bool layered = target.layer == kLayered;
     for (uint32_t t = 0; t < triCount; ++t) {
       VertexOut v[3];
@@ -291,6 +298,7 @@ struct CpuBackend::Impl {
     flush();  // pending draws may sample the old contents
     auto src = l.bytes(c.data);
     TextureData& t = *textures[c.id];
+    t.prov.reset();  // uploaded texels are exact: no interval any more
     const uint64_t bytes = levelBytes(t.desc, c.level);
     std::memcpy(t.levels[c.level].data() + bytes * c.layer, src.data(), src.size());
   }

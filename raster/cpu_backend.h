@@ -21,7 +21,8 @@
 namespace tessera {
 
 struct RenderOptions {
-  int threads = 0;  // 0 = all hardware threads
+  int threads = 0;          // 0 = all hardware threads
+  bool provenance = false;  // also record per-pixel intervals and ambiguity classes (provenance.h)
 };
 
 // One presented image: attachment `attachment` of the final target at (level, layer).

@@ -26,6 +26,7 @@ struct DrawState {
   BlendState blend;
   int varyings = 0;
   int colorOutputs = 1;
+  Rect clampRect;  // viewport ∩ scissor ∩ target of the draw (provenance mode widens bboxes within it)
 };
 
 // A triangle after clipping, snapping and setup. Coordinates are in sub-pixels (8 fractional bits)
@@ -46,6 +47,7 @@ struct TriSetup {
   uint32_t layer;
   uint32_t drawState;               // index into Scene::states
   bool frontFacing;
+  bool clipped;                     // made by clipping: its edges may sit elsewhere in GL (CLIP_EDGE)
 };
 
 enum class TileOp : uint8_t { Triangle, ClearColor, ClearDepth };
@@ -72,6 +74,7 @@ struct TargetView {
 
 struct Scene {
   TargetView target;
+  bool provenance = false;  // track per-pixel intervals (provenance.h); bins use 1-px-wider bboxes
   std::vector<std::unique_ptr<DrawState>> states;
   std::vector<TriSetup> tris;
   std::vector<ClearCmd> clears;

@@ -5,23 +5,11 @@
 #include <cstring>
 
 #include "raster/fragops.h"
+#include "raster/provenance.h"
 
 namespace tessera::detail {
 namespace {
 
-struct TileRect {
-  int32_t x0, y0, x1, y1;  // inclusive
-};
-
-float loadDepth(const TextureData& d, uint32_t level, uint32_t layer, int32_t x, int32_t y) {
-  float z;
-  std::memcpy(&z, d.texel(level, layer, uint32_t(x), uint32_t(y)), sizeof z);
-  return z;
-}
-
-void storeDepth(TextureData& d, uint32_t level, uint32_t layer, int32_t x, int32_t y, float z) {
-  std::memcpy(d.texel(level, layer, uint32_t(x), uint32_t(y)), &z, sizeof z);
-}
 
 // Encodes a clear value as one texel of format f.
 void encodeClear(Format f, const std::array<uint32_t, 4>& bits, uint8_t out[16]) {
@@ -59,6 +47,14 @@ void runClear(const Scene& scene, const ClearCmd& c, TextureData* tex, const Til
     for (int32_t y = y0; y <= y1; ++y) {
       uint8_t* row = tex->texel(t.level, layer, uint32_t(x0), uint32_t(y));
       for (int32_t x = x0; x <= x1; ++x, row += bpp) std::memcpy(row, value, bpp);
+      if (tex->prov) {  // a cleared texel is exact: its interval collapses to the value
+        Provenance& pv = *tex->prov;
+        for (int32_t x = x0; x <= x1; ++x) {
+          std::memcpy(pv.lo->texel(t.level, layer, uint32_t(x), uint32_t(y)), value, bpp);
+          std::memcpy(pv.hi->texel(t.level, layer, uint32_t(x), uint32_t(y)), value, bpp);
+          pv.cls(*tex, t.level, layer, uint32_t(x), uint32_t(y)) = 0;
+        }
+      }
     }
 }
 
@@ -201,6 +197,10 @@ void rasterizeTile(const Scene& scene, size_t tileIndex, RastScratch& scratch, P
   for (const TileCmd& cmd : bin) {
     switch (cmd.op) {
       case TileOp::Triangle: {
+        if (scene.provenance) {
+          rasterizeTriangleProvenance(scene, scene.tris[cmd.index], tile, stats);
+          break;
+        }
         TriangleRasterizer r(scene, scene.tris[cmd.index], scratch, stats);
         r.run(tile);
         break;

@@ -9,6 +9,7 @@
 // Does not implement: setup or binning (setup.h).
 #pragma once
 
+#include <cstring>
 #include <vector>
 
 #include "raster/pipeline.h"
@@ -25,5 +26,24 @@ struct RastScratch {
 };
 
 void rasterizeTile(const Scene& scene, size_t tileIndex, RastScratch& scratch, PipelineStats& stats);
+
+struct TileRect {
+  int32_t x0, y0, x1, y1;  // inclusive
+};
+
+// The provenance-mode triangle walk (rast_provenance.cpp): same coverage, depth and shading as the
+// fast path, plus near-miss pixels, three program runs per quad (lower bound, upper bound, value)
+// and interval bookkeeping in the targets' Provenance images.
+void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const TileRect& tile, PipelineStats& stats);
+
+inline float loadDepth(const TextureData& d, uint32_t level, uint32_t layer, int32_t x, int32_t y) {
+  float z;
+  std::memcpy(&z, d.texel(level, layer, uint32_t(x), uint32_t(y)), sizeof z);
+  return z;
+}
+
+inline void storeDepth(TextureData& d, uint32_t level, uint32_t layer, int32_t x, int32_t y, float z) {
+  std::memcpy(d.texel(level, layer, uint32_t(x), uint32_t(y)), &z, sizeof z);
+}
 
 }  // namespace tessera::detail

@@ -11,6 +11,10 @@
 // (exact) and rounded to float once.
 #include "raster/sample.h"
 
+#include "raster/provenance.h"
+
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -21,10 +25,10 @@ namespace tessera {
 
 namespace {
 
-constexpr uint32_t kWeightOne = 1u << kSubtexelBits;            // 256: one 8-bit weight
-constexpr uint32_t kLevelWeightOne = 1u << kLodFracBits;        // 256: one 8-bit mip blend weight
-constexpr double kTotalWeight = 16777216.0;                     // 2^24 = 256^3
-constexpr double kUnormDenominator = 255.0 * kTotalWeight;      // exact in double
+constexpr uint32_t kWeightOne = 1u << kSubtexelBits;        // 256: one 8-bit weight
+constexpr uint32_t kLevelWeightOne = 1u << kLodFracBits;    // 256: one 8-bit mip blend weight
+constexpr double kTotalWeight = 16777216.0;                 // 2^24 = 256^3
+constexpr double kUnormDenominator = 255.0 * kTotalWeight;  // exact in double
 // Texel-space coordinates are clamped to +-2^52 before conversion to int64 (2^52 * 256 < 2^63).
 // Floats of that magnitude are multiples of 2^29, far beyond any meaningful coordinate.
 constexpr float kCoordLimit = 4503599627370496.0f;  // 2^52
@@ -92,27 +96,36 @@ struct Plan {
   bool linear = false;  // texel filter within a level: LINEAR (true) or NEAREST
   Wrap wrapS = Wrap::Repeat, wrapT = Wrap::Repeat;
   uint32_t lastLayer = 0;
-  int levelCount = 0;           // 1 or 2
+  int levelCount = 0;  // 1 or 2
   LevelRef lv[2];
   uint32_t levelWeight[2] = {kLevelWeightOne, 0};  // sums to 256
-  // The border colour converted to the texture's storage domain (GL 4.6 §8.14.2: the border colour
-  // is "interpreted as an RGBA color to match the texture's internal format"; fixed-point
-  // components are clamped to [0, 1]). unorm8 borders are quantized to 8 bits (round half to even
-  // of c * 255) so that filtering stays in exact integers; float borders are used as given.
-  uint32_t borderU[4] = {0, 0, 0, 0};
-  float borderF[4] = {0, 0, 0, 0};
-  uint32_t borderUint = 0;  // R32UI: the bits of borderColor[0] (what a float border set with
-                            // glSamplerParameterfv becomes when read as an integer, as in Mesa)
+  // The border texel, stored like a texel of the texture (GL 4.6 §8.14.2: the border colour is
+  // "interpreted as an RGBA color to match the texture's internal format"; fixed-point components
+  // are clamped to [0, 1]). unorm8 borders are quantized to 8 bits (round half to even of c * 255)
+  // so that filtering stays in exact integers; float borders are stored as given; R32UI stores the
+  // bits of borderColor[0] (what a float border set with glSamplerParameterfv becomes when read as
+  // an integer, as in Mesa). A border tap then reads this texel like any other.
+  alignas(16) uint8_t border[16] = {};
 };
 
 LevelRef levelRef(const TextureData& tex, uint32_t level) {
+  // levelWidth()/levelHeight() inlined: max(1, size >> level).
   LevelRef r;
-  r.w = int32_t(levelWidth(tex.desc, level));
-  r.h = int32_t(levelHeight(tex.desc, level));
+  const uint32_t w = level < 32 ? tex.desc.width >> level : 0, h = level < 32 ? tex.desc.height >> level : 0;
+  r.w = int32_t(w > 0 ? w : 1);
+  r.h = int32_t(h > 0 ? h : 1);
   r.fw = float(r.w);
   r.fh = float(r.h);
-  r.layerStride = levelBytes(tex.desc, level);
+  r.layerStride = uint64_t(r.w) * uint32_t(r.h) * texelBytes(tex.desc.format);
   r.data = tex.levels[level].data();
+  // In provenance mode a rendered texture is read through its lower / upper interval images, so a
+  // lookup of texels that are themselves intervals is bounded too (filtering has non-negative
+  // weights, hence is monotone in every texel).
+  if (tex.prov) {
+    const SampleBound b = shadeProvenance().bound;
+    if (b == SampleBound::Lo) r.data = tex.prov->lo->levels[level].data();
+    if (b == SampleBound::Hi) r.data = tex.prov->hi->levels[level].data();
+  }
   return r;
 }
 
@@ -146,7 +159,7 @@ Plan makePlan(const TexUnit& u, int32_t lambda8) {
         break;
       case Filter::NearestMipmapNearest:
       case Filter::LinearMipmapNearest: {
-        // GL 4.6 §8.14.3 eq. 8.x: d = base if lambda <= 1/2, else base + ceil(lambda + 1/2) - 1,
+        // GL 4.6 §8.14.3: d = base if lambda <= 1/2, else base + ceil(lambda + 1/2) - 1,
         // clamped to q. In 8.8: ceil((lambda8 + 128) / 256) - 1 with lambda8 > 128 > 0.
         p.linear = s.minFilter == Filter::LinearMipmapNearest;
         const int32_t d = lambda8 <= 128 ? 0 : ((lambda8 + 128 + 255) >> 8) - 1;
@@ -181,15 +194,17 @@ Plan makePlan(const TexUnit& u, int32_t lambda8) {
   }
 
   const Format fmt = tex.desc.format;
-  for (int c = 0; c < 4; ++c) {
-    const float b = s.borderColor[size_t(c)];
-    if (isUnorm(fmt)) {
+  if (isUnorm(fmt)) {
+    for (int c = 0; c < channelCount(fmt); ++c) {
+      const float b = s.borderColor[size_t(c)];
       const double cl = std::isnan(b) ? 0.0 : (b < 0.0f ? 0.0 : (b > 1.0f ? 1.0 : double(b)));
-      p.borderU[c] = uint32_t(roundHalfEven(cl * 255.0));  // 0..255
+      p.border[c] = uint8_t(roundHalfEven(cl * 255.0));  // 0..255
     }
-    p.borderF[c] = b;
+  } else if (isFloat(fmt)) {
+    std::memcpy(p.border, s.borderColor.data(), size_t(channelCount(fmt)) * sizeof(float));
+  } else {
+    std::memcpy(p.border, &s.borderColor[0], sizeof(float));
   }
-  std::memcpy(&p.borderUint, &s.borderColor[0], sizeof p.borderUint);
   return p;
 }
 
@@ -223,8 +238,9 @@ struct Fmt<Format::D32F> {
   static constexpr bool kUnorm = false;
 };
 
+// Accumulators: unorm8 sums are exact in uint32 (at most 255 * 2^24 < 2^32); float sums in double.
 template <Format F>
-using Acc = std::conditional_t<Fmt<F>::kUnorm, uint64_t, double>;
+using Acc = std::conditional_t<Fmt<F>::kUnorm, uint32_t, double>;
 
 inline float loadF32(const uint8_t* p) {
   float v;
@@ -232,23 +248,13 @@ inline float loadF32(const uint8_t* p) {
   return v;
 }
 
-// acc += w * texel; texel == nullptr means the border texel.
+// Channel c of a texel in the accumulator domain (a float is exact in double).
 template <Format F>
-inline void accumulate(const Plan& p, const uint8_t* texel, uint32_t w, Acc<F> acc[4]) {
-  constexpr int C = Fmt<F>::kChannels;
+inline Acc<F> channel(const uint8_t* texel, int c) {
   if constexpr (Fmt<F>::kUnorm) {
-    if (texel != nullptr) {
-      for (int c = 0; c < C; ++c) acc[c] += uint64_t(w) * texel[c];
-    } else {
-      for (int c = 0; c < C; ++c) acc[c] += uint64_t(w) * p.borderU[c];
-    }
+    return texel[c];
   } else {
-    // float x integer weight (< 2^25) is exact in double.
-    if (texel != nullptr) {
-      for (int c = 0; c < C; ++c) acc[c] += double(loadF32(texel + 4 * c)) * double(w);
-    } else {
-      for (int c = 0; c < C; ++c) acc[c] += double(p.borderF[c]) * double(w);
-    }
+    return double(loadF32(texel + 4 * c));
   }
 }
 
@@ -262,7 +268,7 @@ inline int64_t nearestIndex(float u) {
 }
 
 // LINEAR: i0 = floor(u - 1/2), alpha = frac(u - 1/2) rounded half to even to 8 bits
-// (GL 4.6 §8.14.2 eq. for LINEAR; 8-bit subtexel precision as D3D / llvmpipe's AoS path).
+// (GL 4.6 §8.14.2, LINEAR; 8-bit subtexel precision as D3D / llvmpipe's AoS path).
 // Computed as U = round_half_even(256 * u) - 128 (256 * u is exact in double), then i0 = U >> 8 and
 // alpha8 = U & 255. This equals the rule above; when alpha rounds up to 256 the carry moves to i0,
 // which gives the same filtered value (the full weight lands on the same texel).
@@ -278,7 +284,7 @@ inline int64_t linearFixed(float u) {
 inline int64_t floorMod(int64_t i, int64_t n) {
   if ((n & (n - 1)) == 0) return i & (n - 1);
   int64_t m;
-  if (i >= INT32_MIN && i <= INT32_MAX) {
+  if (i >= INT32_MIN && i <= INT32_MAX && n <= INT32_MAX) {
     m = int32_t(i) % int32_t(n);
   } else {
     m = i % n;
@@ -292,7 +298,8 @@ inline int32_t wrapIndex(Wrap w, int64_t i, int32_t size) {
   switch (w) {
     case Wrap::Repeat:  // i mod size
       return int32_t(floorMod(i, size));
-    case Wrap::MirroredRepeat: {  // (size - 1) - mirror((i mod 2 size) - size), mirror(a) = a >= 0 ? a : -(1 + a)
+    case Wrap::MirroredRepeat: {
+      // (size - 1) - mirror((i mod 2 size) - size), mirror(a) = a >= 0 ? a : -(1 + a)
       const int64_t a = floorMod(i, int64_t(2) * size) - size;
       const int64_t mir = a >= 0 ? a : -(1 + a);
       return int32_t(size - 1 - mir);
@@ -317,16 +324,21 @@ inline void wrapPair(Wrap w, int64_t i0, int32_t size, int32_t& w0, int32_t& w1)
   w1 = wrapIndex(w, i0 + 1, size);
 }
 
-inline const uint8_t* texelPtr(const uint8_t* layerBase, const LevelRef& L, int32_t i, int32_t j, uint32_t bpt) {
-  if (i < 0 || j < 0) return nullptr;  // border texel (CLAMP_TO_BORDER)
+inline const uint8_t* texelPtr(const Plan& p, const uint8_t* layerBase, const LevelRef& L, int32_t i, int32_t j,
+                               uint32_t bpt) {
+  if (i < 0 || j < 0) return p.border;  // CLAMP_TO_BORDER outside the image
   return layerBase + (uint64_t(j) * uint32_t(L.w) + uint32_t(i)) * bpt;
 }
 
-// Adds one level's filtered value times `levelW` (total weight levelW * 2^16) to acc.
+// Adds one level's filtered value times `levelW` (total weight levelW * 2^16) to acc. Each level is
+// summed in locals first (a uint8_t texel pointer may alias anything, which would otherwise keep
+// acc[] in memory); float sums are ((t00 w00 + t10 w10) + t01 w01) + t11 w11 per level, then
+// level d1 + level d2, in this fixed order. Every float x integer-weight (<= 2^24) product is exact.
 template <Format F>
 inline void accumulateLevel(const Plan& p, const LevelRef& L, float s, float t, uint32_t layer, uint32_t levelW,
                             Acc<F> acc[4]) {
   constexpr uint32_t bpt = texelBytes(F);
+  constexpr int C = Fmt<F>::kChannels;
   const uint8_t* base = L.data + layer * L.layerStride;
   // GL 4.6 §8.14.2: u = s * w_level, v = t * h_level, in float32 (spec-choices).
   const float u = s * L.fw;
@@ -334,7 +346,9 @@ inline void accumulateLevel(const Plan& p, const LevelRef& L, float s, float t, 
   if (!p.linear) {
     const int32_t i = wrapIndex(p.wrapS, nearestIndex(u), L.w);
     const int32_t j = wrapIndex(p.wrapT, nearestIndex(v), L.h);
-    accumulate<F>(p, texelPtr(base, L, i, j, bpt), levelW * kWeightOne * kWeightOne, acc);
+    const uint8_t* tx = texelPtr(p, base, L, i, j, bpt);
+    const Acc<F> w = Acc<F>(levelW * kWeightOne * kWeightOne);
+    for (int c = 0; c < C; ++c) acc[c] += channel<F>(tx, c) * w;
     return;
   }
   const int64_t U = linearFixed(u), V = linearFixed(v);
@@ -343,12 +357,21 @@ inline void accumulateLevel(const Plan& p, const LevelRef& L, float s, float t, 
   int32_t wi0, wi1, wj0, wj1;
   wrapPair(p.wrapS, i0, L.w, wi0, wi1);
   wrapPair(p.wrapT, j0, L.h, wj0, wj1);
+  const uint8_t* t00 = texelPtr(p, base, L, wi0, wj0, bpt);
+  const uint8_t* t10 = texelPtr(p, base, L, wi1, wj0, bpt);
+  const uint8_t* t01 = texelPtr(p, base, L, wi0, wj1, bpt);
+  const uint8_t* t11 = texelPtr(p, base, L, wi1, wj1, bpt);
   const uint32_t na = kWeightOne - a, nb = kWeightOne - b;
   // tau = (1-a)(1-b) t00 + a(1-b) t10 + (1-a) b t01 + a b t11 (GL 4.6 §8.14.2; rr's term order).
-  accumulate<F>(p, texelPtr(base, L, wi0, wj0, bpt), na * nb * levelW, acc);
-  accumulate<F>(p, texelPtr(base, L, wi1, wj0, bpt), a * nb * levelW, acc);
-  accumulate<F>(p, texelPtr(base, L, wi0, wj1, bpt), na * b * levelW, acc);
-  accumulate<F>(p, texelPtr(base, L, wi1, wj1, bpt), a * b * levelW, acc);
+  const Acc<F> w00 = Acc<F>(na * nb * levelW), w10 = Acc<F>(a * nb * levelW);
+  const Acc<F> w01 = Acc<F>(na * b * levelW), w11 = Acc<F>(a * b * levelW);
+  for (int c = 0; c < C; ++c) {
+    Acc<F> sum = channel<F>(t00, c) * w00;
+    sum += channel<F>(t10, c) * w10;
+    sum += channel<F>(t01, c) * w01;
+    sum += channel<F>(t11, c) * w11;
+    acc[c] += sum;
+  }
 }
 
 // One filtered lookup with a plan; expands to RGBA per GL 4.6 §15.2.1 Table 15.1
@@ -376,8 +399,8 @@ inline void samplePlannedUint(const Plan& p, float s, float t, uint32_t layer, f
   const LevelRef& L = p.lv[0];
   const int32_t i = wrapIndex(p.wrapS, nearestIndex(s * L.fw), L.w);
   const int32_t j = wrapIndex(p.wrapT, nearestIndex(t * L.fh), L.h);
-  uint32_t v = p.borderUint;
-  if (const uint8_t* tp = texelPtr(L.data + layer * L.layerStride, L, i, j, 4)) std::memcpy(&v, tp, 4);
+  uint32_t v;
+  std::memcpy(&v, texelPtr(p, L.data + layer * L.layerStride, L, i, j, 4), 4);
   out[0] = float(v);
   out[1] = 0.0f;
   out[2] = 0.0f;
@@ -463,16 +486,26 @@ SamplerQ SamplerQ::from(const SamplerState& s) {
 }
 
 int64_t log2Fixed(double x, int fracBits) {
-  constexpr int kBits = 24;  // fraction bits of the documented intermediate
+  // Fraction bits of the documented intermediate.
+  constexpr int kBits = 24;
   if (!(x > 0.0)) return std::numeric_limits<int64_t>::min();  // log2 of 0 / negative / NaN
   if (std::isinf(x)) return std::numeric_limits<int64_t>::max();
   if (fracBits < 0) fracBits = 0;
-  // x = m * 2^e with m in [1, 2); frexp is exact (also for subnormals).
-  int e = 0;
-  const double fr = std::frexp(x, &e);  // fr in [0.5, 1)
-  e -= 1;
-  // m in Q1.62: fr * 2^63 is an integer < 2^63 (53 significant bits), exact.
-  uint64_t m = uint64_t(std::ldexp(fr, 63));
+  // x = m * 2^e with m in [1, 2), read from the IEEE-754 bits; m in Q1.62 (exact: 53 bits).
+  uint64_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  const int biased = int(bits >> 52) & 0x7ff;
+  uint64_t mant = bits & ((uint64_t(1) << 52) - 1);
+  int e;
+  uint64_t m;
+  if (biased != 0) {  // normal
+    e = biased - 1023;
+    m = (mant | (uint64_t(1) << 52)) << 10;
+  } else {  // subnormal: mant * 2^-1074 with the leading one at bit p
+    const int p = 63 - std::countl_zero(mant);
+    e = p - 1074;
+    m = mant << (62 - p);
+  }
   // log2(m) bit by bit: square m; if m^2 >= 2 the next bit is 1 and m^2 is halved. Each step
   // truncates at 2^-62, so the bits are those of floor(2^k * log2(m)) up to an error < 2^-36 units
   // of the 24th bit (exact for m = 1, i.e. for powers of two).
@@ -495,30 +528,16 @@ int64_t log2Fixed(double x, int fracBits) {
       m >>= 1;
     }
   }
-  const int64_t floorValue = int64_t(e) * (int64_t(1) << steps) + f;  // floor(2^steps * log2 x)
-  if (fracBits >= kBits) return floorValue * (int64_t(1) << (fracBits - kBits));  // only 24 bits are computed
+  // floor(2^steps * log2 x); beyond 24 bits the result is only shifted (24 bits are computed).
+  const int64_t floorValue = int64_t(e) * (int64_t(1) << steps) + f;
+  if (fracBits >= kBits) return floorValue * (int64_t(1) << (fracBits - kBits));
   return (floorValue + 1) >> 1;  // arithmetic shift: floor division
 }
 
-int32_t computeLambda(double dudx, double dvdx, double dudy, double dvdy, const SamplerQ& s, float shaderBias) {
-  // GL 4.6 §8.14.1, exact form: rho^2 = max(ux^2 + vx^2, uy^2 + vy^2) in double (no sqrt needed),
-  // lambda_base = log2(rho) = 0.5 * log2(rho^2), so 256 * lambda_base = 128 * log2(rho^2):
-  // log2Fixed(rho^2, 7) is lambda_base in 8.8, rounded once.
-  int32_t base;
-  if (!std::isfinite(dudx) || !std::isfinite(dvdx) || !std::isfinite(dudy) || !std::isfinite(dvdy)) {
-    base = kLodMax;  // NaN / Inf derivatives: most minified (spec-choices)
-  } else {
-    const double rx = dudx * dudx + dvdx * dvdx;
-    const double ry = dudy * dudy + dvdy * dvdy;
-    const double rho2 = rx > ry ? rx : ry;
-    if (rho2 == 0.0) {
-      base = kLodMinusInf;  // GL: lambda = -inf for rho = 0 (also when rho^2 underflows)
-    } else if (std::isinf(rho2)) {
-      base = kLodMax;
-    } else {
-      base = int32_t(log2Fixed(rho2, kLodFracBits - 1));  // |value| <= 1075 * 128 < 2^18
-    }
-  }
+namespace {
+
+// lambda' and lambda from lambda_base (8.8): GL 4.6 §8.14.1, eq. 8.6 - 8.8.
+int32_t finishLambda(int32_t base, const SamplerQ& s, float shaderBias) {
   // lambda' = lambda_base + clamp(bias_texobj + bias_shader, -MAX_TEXTURE_LOD_BIAS, +MAX_TEXTURE_LOD_BIAS).
   constexpr int32_t kMaxBias8 = int32_t(kMaxLodBias * 256.0f);
   int32_t bias = s.bias8 + quantizeLod(shaderBias);
@@ -532,6 +551,193 @@ int32_t computeLambda(double dudx, double dvdx, double dudy, double dvdy, const 
   return lambda;
 }
 
+// lambda_base (8.8) of rho^2: log2Fixed(rho^2, 7) = 128 log2(rho^2) = 256 log2(rho), rounded once.
+int32_t lambdaBaseFromRho2(double rho2) {
+  if (std::isnan(rho2) || std::isinf(rho2)) return kLodMax;  // NaN / Inf: most minified (spec-choices)
+  if (rho2 == 0.0) return kLodMinusInf;  // GL: lambda = -inf for rho = 0 (also when rho^2 underflows)
+  return int32_t(log2Fixed(rho2, kLodFracBits - 1));  // |value| <= 1075 * 128 < 2^18
+}
+
+}  // namespace
+
+int32_t computeLambda(double dudx, double dvdx, double dudy, double dvdy, const SamplerQ& s, float shaderBias) {
+  // GL 4.6 §8.14.1, exact form: rho^2 = max(ux^2 + vx^2, uy^2 + vy^2) in double (no sqrt needed),
+  // lambda_base = log2(rho) = 0.5 * log2(rho^2).
+  int32_t base;
+  if (!std::isfinite(dudx) || !std::isfinite(dvdx) || !std::isfinite(dudy) || !std::isfinite(dvdy)) {
+    base = kLodMax;
+  } else {
+    const double rx = dudx * dudx + dvdx * dvdx;
+    const double ry = dudy * dudy + dvdy * dvdy;
+    base = lambdaBaseFromRho2(rx > ry ? rx : ry);
+  }
+  return finishLambda(base, s, shaderBias);
+}
+
+namespace {
+
+// ---- interval sampling (provenance mode, provenance.h) -------------------------------------------
+// The legal alternatives a GL implementation may take for one lookup, and their tolerances; each is
+// derived in docs/crosscheck.md:
+// - lambda: exact rho vs the spec's bounds max(mu, mv) <= f <= mu + mv (§8.14.1 eq. 8.7), coarse vs
+//   fine derivatives (GLSL §8.14.1), and log2 precision (1/16; llvmpipe's fast log2 errs <= 0.043);
+// - texel coordinates: a sample-position shift of 1/128 px (two implementations snapping the same
+//   vertex to neighbouring 1/256 grid points) times the coordinate derivatives, float interpolation
+//   error 2^-20 relative, and half an 8-bit weight step (implementations with exact weights);
+// - array layer: r + 1/2 within 2^-16 of an integer;
+// - unorm filtering precision: +-1 LSB when the lookup blends texels (llvmpipe's AoS 8-bit lerps).
+constexpr int32_t kLodTol8 = 16;
+constexpr double kPosTolPx = 1.0 / 128.0;
+constexpr double kCoordRel = 1.0 / 1048576.0;
+constexpr double kWeightTolTexel = 1.0 / 512.0;
+constexpr float kLayerTol = 1.0f / 65536.0f;
+
+struct Interval {
+  float lo[4], hi[4];
+  void init(const float v[4]) {
+    for (int c = 0; c < 4; ++c) lo[c] = hi[c] = v[c];
+  }
+  void add(const float v[4]) {
+    for (int c = 0; c < 4; ++c) {
+      if (v[c] < lo[c] || std::isnan(lo[c])) lo[c] = v[c];
+      if (v[c] > hi[c] || std::isnan(hi[c])) hi[c] = v[c];
+    }
+  }
+};
+
+inline bool sameValue(const float a[4], const float b[4]) { return std::memcmp(a, b, 4 * sizeof(float)) == 0; }
+
+// Candidate coordinates along one axis for one plan: both ends of the tolerance, plus every texel
+// centre inside it for LINEAR (where the piecewise-linear filter has its kinks).
+int coordCandidates(float x, double tol, const Plan& p, bool horizontal, float out[6]) {
+  int n = 0;
+  out[n++] = float(double(x) - tol);
+  out[n++] = float(double(x) + tol);
+  if (!p.linear) return n;
+  for (int l = 0; l < p.levelCount && n < 6; ++l) {
+    const double size = horizontal ? p.lv[l].w : p.lv[l].h;
+    const double a = (double(x) - tol) * size - 0.5, b = (double(x) + tol) * size - 0.5;
+    if (!(b - a < 4.0)) continue;  // NaN or huge: the two ends already stand for it
+    for (double k = std::ceil(a); k <= b && n < 6; k += 1.0) out[n++] = float((k + 0.5) / size);
+  }
+  return n;
+}
+
+// Bounds one pixel's lookup over the legal alternatives. `der` = {dsdx, dtdx, dsdy, dtdy} per
+// derivative choice (0: the oracle's, 1: the alternative), in normalized coordinates.
+void intervalPixel(const TexUnit& u, float s, float t, float r, bool array, const double der[2][4], int derCount,
+                   float bias, uint16_t& classes, Interval& iv) {
+  const TextureDesc& d = u.tex->desc;
+  const double W = double(d.width), H = double(d.height);
+  int32_t lamOracle = 0, lamLo = 0, lamHi = 0;
+  int32_t exact[2] = {0, 0};
+  for (int k = 0; k < derCount; ++k) {
+    const double ux = der[k][0] * W, vx = der[k][1] * H, uy = der[k][2] * W, vy = der[k][3] * H;
+    const double rx = ux * ux + vx * vx, ry = uy * uy + vy * vy;
+    const double mu = std::max(std::fabs(ux), std::fabs(uy)), mv = std::max(std::fabs(vx), std::fabs(vy));
+    const double lower = std::max(mu, mv), upper = mu + mv;
+    const int32_t e = lambdaBaseFromRho2(rx > ry ? rx : ry);
+    const int32_t a = lambdaBaseFromRho2(lower * lower), b = lambdaBaseFromRho2(upper * upper);
+    exact[k] = finishLambda(e, u.sampler, bias);
+    const int32_t lo = std::min({e, a, b}), hi = std::max({e, a, b});
+    const int32_t flo = finishLambda(lo == kLodMinusInf ? lo : lo - kLodTol8, u.sampler, bias);
+    const int32_t fhi = finishLambda(hi >= kLodMax ? hi : hi + kLodTol8, u.sampler, bias);
+    if (k == 0) lamOracle = exact[0], lamLo = flo, lamHi = fhi;
+    lamLo = std::min(lamLo, flo);
+    lamHi = std::max(lamHi, fhi);
+  }
+  if (derCount > 1 && exact[1] != exact[0]) classes |= kHelperDeriv;
+
+  // Lambda candidates: the ends, the oracle's, and both sides of every switch point inside
+  // (integers: level pairs and the mag/min switch at c = 0; k + 1/2: nearest-mip rounding).
+  int32_t lam[18];
+  int nl = 0;
+  lam[nl++] = lamOracle;
+  lam[nl++] = lamLo;
+  lam[nl++] = lamHi;
+  const int32_t kMaxK = int32_t(d.levels) + 1;
+  for (int32_t k = 0; k <= kMaxK && nl < 16; ++k)
+    for (int32_t off : {0, 1, 128, 129}) {
+      const int32_t v = k * 256 + off;
+      if (v > lamLo && v < lamHi && nl < 18) lam[nl++] = v;
+    }
+
+  // Layer candidates.
+  uint32_t layerOracle = 0, layerLo = 0, layerHi = 0;
+  if (array) {
+    layerOracle = selectLayer(r, d.layers);
+    layerLo = selectLayer(r - kLayerTol, d.layers);
+    layerHi = selectLayer(r + kLayerTol, d.layers);
+    if (layerLo != layerHi) classes |= kLayerTie;
+  }
+
+  const double tolS = (std::fabs(der[0][0]) + std::fabs(der[0][2])) * kPosTolPx + std::fabs(double(s)) * kCoordRel;
+  const double tolT = (std::fabs(der[0][1]) + std::fabs(der[0][3])) * kPosTolPx + std::fabs(double(t)) * kCoordRel;
+
+  float nominal[4];
+  {
+    const Plan p = makePlan(u, lamOracle);
+    sampleN(u, p, 1, &s, &t, &layerOracle, reinterpret_cast<float(*)[4]>(nominal));
+    iv.init(nominal);
+    if (isUnorm(d.format) && (p.linear || p.levelCount == 2)) classes |= kFilterPrecision;
+  }
+  for (int li = 0; li < nl; ++li) {
+    const Plan p = makePlan(u, lam[li]);
+    const LevelRef& coarse = p.lv[p.levelCount - 1];
+    const double qS = kWeightTolTexel / coarse.w, qT = kWeightTolTexel / coarse.h;
+    float sc[7], tc[7];
+    int ns = coordCandidates(s, tolS + (p.linear ? qS : 0.0), p, true, sc);
+    int nt = coordCandidates(t, tolT + (p.linear ? qT : 0.0), p, false, tc);
+    sc[ns++] = s;
+    tc[nt++] = t;
+    for (uint32_t layer = layerLo; layer <= layerHi; ++layer)
+      for (int a = 0; a < ns; ++a)
+        for (int b = 0; b < nt; ++b) {
+          float v[1][4];
+          sampleN(u, p, 1, &sc[a], &tc[b], &layer, v);
+          if (sameValue(v[0], nominal)) continue;
+          iv.add(v[0]);
+          if (lam[li] != lamOracle) classes |= kLodNearSwitch;
+          if (a != ns - 1 || b != nt - 1) classes |= kSubtexelNearHalf;
+        }
+  }
+  if (classes & kFilterPrecision) {
+    for (int c = 0; c < channelCount(d.format); ++c) {
+      iv.lo[c] = std::max(0.0f, float(double(iv.lo[c]) - 1.0 / 255.0));
+      iv.hi[c] = std::min(1.0f, float(double(iv.hi[c]) + 1.0 / 255.0));
+    }
+  }
+}
+
+// Quad lookup in provenance mode: each pixel's interval; out = lower or upper bound per pixel.
+void sampleQuadInterval(const TexUnit& u, const float s[4], const float t[4], const float* r, float bias,
+                        const double* grad, float out[4][4]) {
+  ShadeProvenance& pv = shadeProvenance();
+  for (int p = 0; p < 4; ++p) {
+    double der[2][4];
+    // 0: coarse (the oracle's) or the explicit gradient; 1: fine, per row / column of the quad.
+    if (grad) {
+      for (int k = 0; k < 4; ++k) der[0][k] = grad[k];
+    } else {
+      der[0][0] = double(s[1]) - s[0], der[0][1] = double(t[1]) - t[0];
+      der[0][2] = double(s[2]) - s[0], der[0][3] = double(t[2]) - t[0];
+    }
+    const int row = (p >> 1) * 2, col = p & 1;
+    der[1][0] = double(s[row + 1]) - s[row], der[1][1] = double(t[row + 1]) - t[row];
+    der[1][2] = double(s[2 + col]) - s[col], der[1][3] = double(t[2 + col]) - t[col];
+    Interval iv;
+    intervalPixel(u, s[p], t[p], r ? r[p] : 0.0f, r != nullptr, der, 2, bias, pv.classes[size_t(p)], iv);
+    for (int c = 0; c < 4; ++c) out[p][c] = pv.bound == SampleBound::Lo ? iv.lo[c] : iv.hi[c];
+  }
+}
+
+inline bool intervalMode(const TexUnit& u) {
+  const ShadeProvenance& pv = shadeProvenance();
+  return pv.active && pv.bound != SampleBound::Value && isComplete(u.tex, u.sampler.state);
+}
+
+}  // namespace
+
 void sampleAtLambda(const TexUnit& u, float s, float t, uint32_t layer, int32_t lambda8, float out[4]) {
   const Plan p = makePlan(u, lambda8);
   float res[1][4];
@@ -540,30 +746,36 @@ void sampleAtLambda(const TexUnit& u, float s, float t, uint32_t layer, int32_t 
 }
 
 void sampleQuad2D(const TexUnit& u, const float s[4], const float t[4], float bias, float out[4][4]) {
+  if (intervalMode(u)) return sampleQuadInterval(u, s, t, nullptr, bias, nullptr, out);
   static constexpr uint32_t kLayer0[4] = {0, 0, 0, 0};
   sampleQuadImpl(u, s, t, kLayer0, bias, out);
 }
 
 void sampleQuad2DArray(const TexUnit& u, const float s[4], const float t[4], const float r[4], float bias,
                        float out[4][4]) {
+  if (intervalMode(u)) return sampleQuadInterval(u, s, t, r, bias, nullptr, out);
   const uint32_t layers = u.tex != nullptr ? u.tex->desc.layers : 1u;
   const uint32_t l[4] = {selectLayer(r[0], layers), selectLayer(r[1], layers), selectLayer(r[2], layers),
                          selectLayer(r[3], layers)};
   sampleQuadImpl(u, s, t, l, bias, out);
 }
 
-void sampleGrad2DArray(const TexUnit& u, const float s[4], const float t[4], const float r[4], float dsdx,
-                       float dtdx, float dsdy, float dtdy, float out[4][4]) {
+void sampleGrad2DArray(const TexUnit& u, const float s[4], const float t[4], const float r[4], float dsdx, float dtdx,
+                       float dsdy, float dtdy, float out[4][4]) {
   if (!isComplete(u.tex, u.sampler.state)) {
     for (int i = 0; i < 4; ++i) writeIncomplete(out[i]);
     return;
+  }
+  if (intervalMode(u)) {
+    const double g[4] = {dsdx, dtdx, dsdy, dtdy};
+    return sampleQuadInterval(u, s, t, r, 0.0f, g, out);
   }
   // textureGrad: explicit derivatives replace the implicit ones; there is no shader bias, but the
   // sampler's bias still applies (GL 4.6 §8.14.1: bias_shader = 0 for the Grad functions).
   const TextureDesc& d = u.tex->desc;
   const double W = double(d.width), H = double(d.height);
-  const int32_t lambda8 = computeLambda(double(dsdx) * W, double(dtdx) * H, double(dsdy) * W, double(dtdy) * H,
-                                        u.sampler, 0.0f);
+  const int32_t lambda8 =
+      computeLambda(double(dsdx) * W, double(dtdx) * H, double(dsdy) * W, double(dtdy) * H, u.sampler, 0.0f);
   const uint32_t l[4] = {selectLayer(r[0], d.layers), selectLayer(r[1], d.layers), selectLayer(r[2], d.layers),
                          selectLayer(r[3], d.layers)};
   const Plan p = makePlan(u, lambda8);
@@ -616,6 +828,10 @@ void fetchBuffer(const TexUnit& u, int64_t index, float out[4]) {
   // Out of range (undefined in GL without robustness): (0, 0, 0, 0), as llvmpipe and robust access.
   if (base == nullptr || index < 0 || uint64_t(index) >= n) {
     for (int c = 0; c < 4; ++c) out[c] = 0.0f;
+    // The value is undefined in GL: whatever the program makes of it is "don't care".
+    ShadeProvenance& pv = shadeProvenance();
+    if (pv.active)
+      for (auto& dc : pv.dontCare) dc = true;
     return;
   }
   const Format fmt = u.tex->desc.format;

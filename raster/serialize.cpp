@@ -1,6 +1,7 @@
 #include "raster/serialize.h"
 
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -9,10 +10,9 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <system_error>
 #include <type_traits>
 #include <utility>
-
-#include <fmt/format.h>
 
 #include "raster/sha256.h"
 
@@ -20,8 +20,8 @@ namespace tessera {
 namespace {
 
 // Byte offsets of the header fields (docs/tframe-format.md, "Header").
-constexpr size_t kOffVersion = 8, kOffHeaderSize = 12, kOffCommandCount = 16, kOffBlobSize = 24,
-                 kOffNextId = 32, kOffChecksum = 40;
+constexpr size_t kOffVersion = 8, kOffHeaderSize = 12, kOffCommandCount = 16, kOffBlobSize = 24, kOffNextId = 32,
+                 kOffChecksum = 40;
 // The smallest command is an opcode and a payload size with an empty payload.
 constexpr uint64_t kMinCommandBytes = 2 + 4;
 constexpr size_t kCommandKinds = std::variant_size_v<Command>;
@@ -259,8 +259,8 @@ class Writer {
   void enumeration(const E& v, const char* name, int index = -1) {
     // An out-of-range enum (made by a cast) would encode into a file the decoder rejects.
     if (unsigned(v) > enumMax<E>()) {
-      ctx.fail(out_.size(), fmt::format("field {} = {} is out of range (0..{})", fieldName(name, index),
-                                        unsigned(v), enumMax<E>()));
+      ctx.fail(out_.size(),
+               fmt::format("field {} = {} is out of range (0..{})", fieldName(name, index), unsigned(v), enumMax<E>()));
     }
     raw(uint8_t(v), 1);
   }
@@ -274,8 +274,8 @@ class Writer {
   }
   void blobRange(const BlobRange& r, const char* name, int index = -1) {
     if (r.offset > blobSize_ || r.size > blobSize_ - r.offset) {
-      ctx.fail(out_.size(), fmt::format("field {} = [{}, +{}) lies outside the blob ({} bytes)",
-                                        fieldName(name, index), r.offset, r.size, blobSize_));
+      ctx.fail(out_.size(), fmt::format("field {} = [{}, +{}) lies outside the blob ({} bytes)", fieldName(name, index),
+                                        r.offset, r.size, blobSize_));
     }
     raw(r.offset, 8);
     raw(r.size, 8);
@@ -387,12 +387,11 @@ constexpr std::array<DecodeFn, sizeof...(I)> makeDecoders(std::index_sequence<I.
 }
 constexpr auto kDecoders = makeDecoders(std::make_index_sequence<kCommandKinds>());
 
-std::string hex(std::span<const uint8_t> b) { return toHex(b); }
-
 // --- files ----------------------------------------------------------------------------------
 
 [[noreturn]] void failErrno(const std::string& path, std::string_view what, int err) {
-  throw Error(fmt::format("{}: {}: {}", path, what, std::strerror(err)));
+  // error_code::message, unlike strerror, is safe to call from several threads.
+  throw Error(fmt::format("{}: {}: {}", path, what, std::error_code(err, std::generic_category()).message()));
 }
 
 // Removes the temporary file if the write does not complete.
@@ -468,8 +467,8 @@ CommandList decodeFrame(std::span<const uint8_t> bytes, std::string_view sourceN
   r.u64(blobSize, "blobSize");
   r.u64(nextId, "nextId");
   if (r.remaining() < 32) {
-    r.ctx.fail(kOffChecksum, fmt::format("field checksum is truncated: needs 32 bytes, {} left in the file",
-                                         r.remaining()));
+    r.ctx.fail(kOffChecksum,
+               fmt::format("field checksum is truncated: needs 32 bytes, {} left in the file", r.remaining()));
   }
   const uint64_t bodySize = fileSize - kFrameHeaderSize;
   if (blobSize > bodySize) {
@@ -483,8 +482,8 @@ CommandList decodeFrame(std::span<const uint8_t> bytes, std::string_view sourceN
                                              count, sectionSize, kMinCommandBytes));
   }
   if (nextId == 0 || nextId > std::numeric_limits<uint32_t>::max()) {
-    r.ctx.fail(kOffNextId, fmt::format("field nextId = {} is out of range (1..{})", nextId,
-                                       std::numeric_limits<uint32_t>::max()));
+    r.ctx.fail(kOffNextId,
+               fmt::format("field nextId = {} is out of range (1..{})", nextId, std::numeric_limits<uint32_t>::max()));
   }
   const auto body = bytes.subspan(kFrameHeaderSize);
   const auto digest = sha256(body);
@@ -492,7 +491,7 @@ CommandList decodeFrame(std::span<const uint8_t> bytes, std::string_view sourceN
   if (std::memcmp(digest.data(), stored.data(), 32) != 0) {
     r.ctx.fail(kOffChecksum, fmt::format("field checksum {} does not match the content's SHA-256 {} "
                                          "(file corrupted or truncated)",
-                                         hex(stored), hex(digest)));
+                                         toHex(stored), toHex(digest)));
   }
 
   // Commands: each confined to its declared payload, which is confined to the command section.
@@ -507,8 +506,8 @@ CommandList decodeFrame(std::span<const uint8_t> bytes, std::string_view sourceN
     r.limit(sectionEnd);
     r.region = "command section";
     if (r.remaining() == 0) {
-      r.ctx.fail(r.pos(), fmt::format("the command section ends after {} of the {} commands the header announces",
-                                      i, count));
+      r.ctx.fail(r.pos(),
+                 fmt::format("the command section ends after {} of the {} commands the header announces", i, count));
     }
     const size_t opcodeAt = r.pos();
     const auto opcode = uint16_t(r.raw(2, "opcode", -1));
@@ -537,13 +536,13 @@ CommandList decodeFrame(std::span<const uint8_t> bytes, std::string_view sourceN
   r.limit(sectionEnd);
   if (r.remaining() != 0) {
     r.ctx.section = true;
-    r.ctx.fail(r.pos(), fmt::format("{} bytes follow the last of the {} commands the header announces",
-                                    r.remaining(), count));
+    r.ctx.fail(r.pos(),
+               fmt::format("{} bytes follow the last of the {} commands the header announces", r.remaining(), count));
   }
   if (nextId != uint64_t(maxCreated) + 1) {
     r.ctx = Context{r.ctx.source};
-    r.ctx.fail(kOffNextId, fmt::format("field nextId = {} does not follow the highest created id {}", nextId,
-                                       maxCreated));
+    r.ctx.fail(kOffNextId,
+               fmt::format("field nextId = {} does not follow the highest created id {}", nextId, maxCreated));
   }
   list.appendBlob(bytes.subspan(sectionEnd, size_t(blobSize)));
   list.setNextId(uint32_t(nextId));

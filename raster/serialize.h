@@ -20,7 +20,7 @@ namespace tessera {
 
 constexpr char kFrameMagic[8] = {'T', 'S', 'F', 'R', 'A', 'M', 'E', '\0'};
 constexpr uint32_t kFrameVersion = 1;
-constexpr uint32_t kFrameHeaderSize = 72;      // magic 8 + version 4 + header size 4 + 3 x u64 + sha 32
+constexpr uint32_t kFrameHeaderSize = 72;        // magic 8 + version 4 + header size 4 + 3 x u64 + sha 32
 constexpr uint32_t kFrameMaxStringBytes = 4096;  // program names and marker texts
 
 // Throws Error if the list cannot be represented (a string longer than kFrameMaxStringBytes, a

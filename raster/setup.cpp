@@ -31,7 +31,8 @@ inline int64_t floorDiv(int64_t a, int64_t b) {
 
 // Bins a snapped triangle given window vertices in submission order.
 void binTriangle(WindowVertex w0, WindowVertex w1, WindowVertex w2, const VertexOut& provoking, uint32_t primitiveId,
-                 uint32_t layer, const SetupParams& params, Scene& scene, PipelineStats& stats, bool& binned) {
+                 uint32_t layer, bool clipped, const SetupParams& params, Scene& scene, PipelineStats& stats,
+                 bool& binned) {
   // Doubled signed area from the snapped coordinates (GL 4.6 §14.6.1, eq. 14.8 in window space).
   const int64_t area2 = (w1.x - w0.x) * (w2.y - w0.y) - (w2.x - w0.x) * (w1.y - w0.y);
   if (area2 == 0) return;  // degenerate after snapping: no fragments (docs/spec-choices.md)
@@ -66,10 +67,13 @@ void binTriangle(WindowVertex w0, WindowVertex w1, WindowVertex w2, const Vertex
   const int64_t minx = std::min({w0.x, w1.x, w2.x}), maxx = std::max({w0.x, w1.x, w2.x});
   const int64_t miny = std::min({w0.y, w1.y, w2.y}), maxy = std::max({w0.y, w1.y, w2.y});
   const Rect& r = params.clampRect;
-  const int64_t x0 = std::max<int64_t>(floorDiv(minx - kSubpixelHalf + kSubpixelOne - 1, kSubpixelOne), r.x);
-  const int64_t x1 = std::min<int64_t>(floorDiv(maxx - kSubpixelHalf, kSubpixelOne), int64_t(r.x) + r.w - 1);
-  const int64_t y0 = std::max<int64_t>(floorDiv(miny - kSubpixelHalf + kSubpixelOne - 1, kSubpixelOne), r.y);
-  const int64_t y1 = std::min<int64_t>(floorDiv(maxy - kSubpixelHalf, kSubpixelOne), int64_t(r.y) + r.h - 1);
+  // Provenance mode also visits pixels up to one pixel outside: they may be covered under another
+  // legal snapping (EDGE_TIE). Coverage itself stays exact; only the visited area grows.
+  const int64_t grow = params.provenance ? 1 : 0;
+  const int64_t x0 = std::max<int64_t>(floorDiv(minx - kSubpixelHalf + kSubpixelOne - 1, kSubpixelOne) - grow, r.x);
+  const int64_t x1 = std::min<int64_t>(floorDiv(maxx - kSubpixelHalf, kSubpixelOne) + grow, int64_t(r.x) + r.w - 1);
+  const int64_t y0 = std::max<int64_t>(floorDiv(miny - kSubpixelHalf + kSubpixelOne - 1, kSubpixelOne) - grow, r.y);
+  const int64_t y1 = std::min<int64_t>(floorDiv(maxy - kSubpixelHalf, kSubpixelOne) + grow, int64_t(r.y) + r.h - 1);
   if (x0 > x1 || y0 > y1) return;
   t.minX = int32_t(x0), t.maxX = int32_t(x1), t.minY = int32_t(y0), t.maxY = int32_t(y1);
 
@@ -78,6 +82,7 @@ void binTriangle(WindowVertex w0, WindowVertex w1, WindowVertex w2, const Vertex
   t.layer = layer;
   t.drawState = params.stateIndex;
   t.frontFacing = front;
+  t.clipped = clipped;
 
   const uint32_t index = uint32_t(scene.tris.size());
   bool any = false;
@@ -91,7 +96,10 @@ void binTriangle(WindowVertex w0, WindowVertex w1, WindowVertex w2, const Vertex
       for (int i = 0; i < 3 && !reject; ++i) {
         const int64_t sx = t.a[i] > 0 ? sx0 + span : sx0;
         const int64_t sy = t.b[i] > 0 ? sy0 + span : sy0;
-        reject = t.a[i] * sx + t.b[i] * sy + t.c[i] - t.bias[i] < 0;
+        // In provenance mode a near miss (within the tie margin, at most 2 px of edge function
+        // here) must still reach the tile.
+        const int64_t slack = params.provenance ? 2 * kSubpixelOne * (std::abs(t.a[i]) + std::abs(t.b[i])) : 0;
+        reject = t.a[i] * sx + t.b[i] * sy + t.c[i] - t.bias[i] + slack < 0;
       }
       if (reject) continue;
       scene.bins[size_t(ty) * size_t(scene.tilesX) + size_t(tx)].push_back({TileOp::Triangle, index});
@@ -150,7 +158,7 @@ void setupTriangle(const VertexOut (&v)[3], uint32_t primitiveId, uint32_t layer
       w[i] = toWindow(pos, params.viewport);
       w[i].varF = v[i].var;
     }
-    binTriangle(w[0], w[1], w[2], v[2], primitiveId, layer, params, scene, stats, binned);
+    binTriangle(w[0], w[1], w[2], v[2], primitiveId, layer, false, params, scene, stats, binned);
   } else {
     ++stats.primitives_clipped;
     ClipVertex poly[kMaxClipPolygon];
@@ -167,7 +175,7 @@ void setupTriangle(const VertexOut (&v)[3], uint32_t primitiveId, uint32_t layer
     }
     // Fan from the first vertex; every sub-triangle keeps the primitive's provoking vertex and id.
     for (int i = 1; i + 1 < n; ++i)
-      binTriangle(w[0], w[i], w[i + 1], v[2], primitiveId, layer, params, scene, stats, binned);
+      binTriangle(w[0], w[i], w[i + 1], v[2], primitiveId, layer, true, params, scene, stats, binned);
   }
   if (!binned) ++stats.primitives_culled;
 }

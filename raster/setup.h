@@ -19,6 +19,7 @@ struct SetupParams {
   RasterState raster;
   uint32_t stateIndex = 0; // Scene::states index of the draw
   int varyings = 0;
+  bool provenance = false;  // bin with bounding boxes one pixel wider (near-miss pixels can be ties)
 };
 
 // Sets up one triangle (after the vertex/geometry stages) and bins what survives.

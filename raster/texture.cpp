@@ -146,8 +146,7 @@ void generateMipChain(TextureData& tex) {
   }
 }
 
-std::vector<std::vector<uint8_t>> buildMipChainRGBA8(uint32_t width, uint32_t height,
-                                                     std::span<const uint8_t> level0) {
+std::vector<std::vector<uint8_t>> buildMipChainRGBA8(uint32_t width, uint32_t height, std::span<const uint8_t> level0) {
   if (width == 0 || height == 0) throw Error("buildMipChainRGBA8: empty image");
   TextureDesc d;
   d.kind = TextureKind::Tex2D;

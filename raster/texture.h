@@ -9,12 +9,15 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
 #include "raster/command_list.h"
 
 namespace tessera {
+
+struct Provenance;
 
 struct BufferData {
   BufferKind kind = BufferKind::Vertex;
@@ -25,6 +28,9 @@ struct TextureData {
   TextureDesc desc;
   std::vector<std::vector<uint8_t>> levels;  // empty for Buffer kind
   const BufferData* buffer = nullptr;        // Buffer kind only, set at bind time
+  // Per-texel interval images, present only when the texture was rendered in provenance mode
+  // (provenance.h). shared_ptr: Provenance is incomplete here and holds TextureData itself.
+  std::shared_ptr<Provenance> prov;
 
   // Allocates zeroed storage for every level (2D / array kinds).
   explicit TextureData(const TextureDesc& d);

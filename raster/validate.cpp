@@ -1,11 +1,13 @@
 #include "raster/validate.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
+#include <memory>
 #include <unordered_map>
-
-#include <fmt/format.h>
 
 #include "raster/program.h"
 
@@ -13,7 +15,8 @@ namespace tessera {
 namespace {
 
 // Largest buffer accepted: the largest a buffer texture can address (kMaxBufferTextureTexels texels
-// of the widest format, 16 bytes). It also bounds what validate() itself materializes.
+// of the widest format, 16 bytes). Backends allocate declared sizes, so this also bounds what a
+// hostile frame can make them allocate per buffer.
 constexpr uint64_t kMaxBufferBytes = uint64_t(kMaxBufferTextureTexels) * 16;
 // U32 attributes are converted to float for programs; above 2^24 the conversion rounds.
 constexpr uint32_t kMaxExactU32 = 1u << 24;
@@ -21,21 +24,12 @@ constexpr int32_t kMaxViewportOffset = kMaxTextureSize;  // the guard-band deriv
 
 enum class Kind : uint8_t { Texture, Buffer, Sampler, Program };
 constexpr std::string_view kindName(Kind k) {
-  switch (k) {
-    case Kind::Texture: return "texture";
-    case Kind::Buffer: return "buffer";
-    case Kind::Sampler: return "sampler";
-    case Kind::Program: return "program";
-  }
-  return "?";
+  constexpr std::string_view kNames[] = {"texture", "buffer", "sampler", "program"};
+  return kNames[size_t(k)];
 }
-constexpr std::string_view bufferKindName(BufferKind k) {
-  switch (k) {
-    case BufferKind::Vertex: return "Vertex";
-    case BufferKind::Index: return "Index";
-    case BufferKind::Texel: return "Texel";
-    default: return "?";
-  }
+std::string_view bufferKindName(BufferKind k) {
+  constexpr std::string_view kNames[] = {"Vertex", "Index", "Texel"};
+  return size_t(k) < std::size(kNames) ? kNames[size_t(k)] : "?";
 }
 
 template <class E>
@@ -52,6 +46,84 @@ uint32_t readLe32(const uint8_t* p) {
   return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
 }
 
+// The contents of one buffer as a draw at the current command sees them: the uploads recorded so
+// far, applied in order over zeros (fresh CPU storage is zeroed). Uploads stay blob ranges until a
+// draw reads the buffer. The storage is then the blob itself while the last whole-buffer upload has
+// not been partially overwritten (the common case: no copy at all), otherwise 64 KiB pages allocated
+// only where bytes were uploaded, so a huge, mostly unwritten buffer costs (almost) nothing.
+class ShadowBuffer {
+ public:
+  explicit ShadowBuffer(uint64_t size = 0) : size_(size) {}
+
+  void upload(uint64_t offset, std::span<const uint8_t> bytes) {  // inside the buffer; bytes outlive *this
+    if (offset == 0 && bytes.size() == size_) {
+      // Replaces everything: forget pages and earlier uploads.
+      direct_ = true;
+      directBytes_ = bytes;
+      pages_.clear();
+      pending_.clear();
+      return;
+    }
+    pending_.push_back({offset, bytes});
+  }
+
+  // Applies pending uploads; call before read().
+  void flush() {
+    if (pending_.empty()) return;
+    if (direct_) {
+      direct_ = false;
+      write(0, directBytes_);
+    }
+    for (const auto& u : pending_) write(u.offset, u.bytes);
+    pending_.clear();
+  }
+
+  // Copies bytes [offset, offset + n), inside the buffer, to dst.
+  void read(uint64_t offset, size_t n, uint8_t* dst) const {
+    if (direct_) {
+      std::memcpy(dst, directBytes_.data() + offset, n);
+      return;
+    }
+    while (n > 0) {
+      const uint64_t in = offset & (kPage - 1);
+      const size_t take = size_t(std::min<uint64_t>(n, kPage - in));
+      auto it = pages_.find(offset / kPage);
+      if (it == pages_.end()) {
+        std::memset(dst, 0, take);
+      } else {
+        std::memcpy(dst, it->second->data() + in, take);
+      }
+      offset += take, dst += take, n -= take;
+    }
+  }
+
+ private:
+  static constexpr uint64_t kPage = 1 << 16;
+  using Page = std::array<uint8_t, kPage>;
+
+  void write(uint64_t offset, std::span<const uint8_t> bytes) {
+    size_t done = 0;
+    while (done < bytes.size()) {
+      const uint64_t in = offset & (kPage - 1);
+      const size_t take = size_t(std::min<uint64_t>(bytes.size() - done, kPage - in));
+      std::unique_ptr<Page>& page = pages_[offset / kPage];
+      if (!page) page = std::make_unique<Page>();  // value-initialized: zeros
+      std::memcpy(page->data() + in, bytes.data() + done, take);
+      offset += take, done += take;
+    }
+  }
+
+  struct Upload {
+    uint64_t offset;
+    std::span<const uint8_t> bytes;
+  };
+  uint64_t size_;
+  bool direct_ = false;
+  std::span<const uint8_t> directBytes_;
+  std::unordered_map<uint64_t, std::unique_ptr<Page>> pages_;
+  std::vector<Upload> pending_;
+};
+
 struct Resource {
   Kind kind;
   size_t createdBy = 0;
@@ -59,17 +131,8 @@ struct Resource {
   TextureDesc desc;   // textures
   BufferKind bufferKind = BufferKind::Vertex;
   uint64_t size = 0;  // buffers
-
-  // Buffer contents, built lazily at the first draw that reads them (most buffers are one upload,
-  // which is then viewed in the blob without a copy).
-  struct Upload {
-    uint64_t offset;
-    BlobRange data;
-  };
-  std::vector<Upload> pending;
-  std::vector<uint8_t> owned;
-  std::span<const uint8_t> view;
-  bool materialized = false, viewIsOwned = false;
+  ShadowBuffer contents;
+  SamplerState sampler;  // samplers
 };
 
 class Validator {
@@ -134,34 +197,6 @@ class Validator {
     if (blobOk(list_, r)) return true;
     report("data [{}, +{}) lies outside the blob ({} bytes)", r.offset, r.size, list_.blob().size());
     return false;
-  }
-
-  std::span<const uint8_t> contents(Resource& b) {
-    if (!b.materialized) {
-      b.materialized = true;
-      if (b.pending.size() == 1 && b.pending[0].offset == 0 && b.pending[0].data.size == b.size) {
-        b.view = list_.bytes(b.pending[0].data);
-        b.viewIsOwned = false;
-        b.pending.clear();
-        return b.view;
-      }
-      b.owned.assign(size_t(b.size), 0);  // never-uploaded bytes read as zero, like fresh CPU storage
-      b.view = b.owned;
-      b.viewIsOwned = true;
-    }
-    if (!b.pending.empty()) {
-      if (!b.viewIsOwned) {
-        b.owned.assign(b.view.begin(), b.view.end());
-        b.viewIsOwned = true;
-      }
-      for (const auto& u : b.pending) {
-        const auto src = list_.bytes(u.data);
-        std::copy(src.begin(), src.end(), b.owned.begin() + ptrdiff_t(u.offset));
-      }
-      b.pending.clear();
-      b.view = b.owned;
-    }
-    return b.view;
   }
 
   // --- commands -----------------------------------------------------------------------------
@@ -254,6 +289,7 @@ class Validator {
     if (!r) return;
     r->bufferKind = c.kind;
     r->size = c.size;
+    r->contents = ShadowBuffer(c.size);
     if (!enumOk(c.kind)) {
       report("kind = {} is out of range", unsigned(c.kind));
       r->valid = false;
@@ -272,20 +308,13 @@ class Validator {
       report("bytes [{}, +{}) are out of range of buffer {} ({} bytes)", c.offset, c.data.size, c.id, b->size);
       return;
     }
-    if (!blob) return;
-    if (c.offset == 0 && c.data.size == b->size) {
-      // A whole-buffer upload replaces everything: go back to viewing the blob without a copy.
-      b->pending.clear();
-      b->owned = {};
-      b->materialized = false;
-      b->viewIsOwned = false;
-    }
-    b->pending.push_back({c.offset, c.data});
+    if (blob) b->contents.upload(c.offset, list_.bytes(c.data));
   }
 
   void check(const CreateSampler& c) {
     Resource* r = create(c.id, Kind::Sampler);
     if (!r) return;
+    r->sampler = c.state;
     const SamplerState& s = c.state;
     if (!enumOk(s.wrapS) || !enumOk(s.wrapT) || !enumOk(s.minFilter) || !enumOk(s.magFilter)) {
       report("a wrap or filter mode is out of range");
@@ -318,12 +347,12 @@ class Validator {
     return false;
   }
   void check(const BindTexture& c) {
-    checkUnit(c.unit);
-    lookupOrNone(c.texture, Kind::Texture, "texture");
+    const Resource* t = lookupOrNone(c.texture, Kind::Texture, "texture");
+    if (checkUnit(c.unit)) unitTexture_[c.unit] = t ? c.texture : kNone;
   }
   void check(const BindSampler& c) {
-    checkUnit(c.unit);
-    lookupOrNone(c.sampler, Kind::Sampler, "sampler");
+    const Resource* s = lookupOrNone(c.sampler, Kind::Sampler, "sampler");
+    if (checkUnit(c.unit)) unitSampler_[c.unit] = s ? c.sampler : kNone;
   }
   void check(const UseProgram& c) {
     lookupOrNone(c.program, Kind::Program, "program");
@@ -371,8 +400,8 @@ class Validator {
       if (a.components == 0) continue;
       anyEnabled = true;
       if (a.components > 4 || a.location >= kMaxAttribs || !enumOk(a.type)) {
-        report("attribs[{}]: components = {}, location = {}, type = {} must be 1..4, 0..{}, F32/U32", i,
-               a.components, a.location, unsigned(a.type), kMaxAttribs - 1);
+        report("attribs[{}]: components = {}, location = {}, type = {} must be 1..4, 0..{}, F32/U32", i, a.components,
+               a.location, unsigned(a.type), kMaxAttribs - 1);
         layoutOk_ = false;
         continue;
       }
@@ -472,7 +501,8 @@ class Validator {
       const uint32_t aw = levelWidth(*a.desc, t.level), ah = levelHeight(*a.desc, t.level);
       const uint32_t bw = levelWidth(*b.desc, t.level), bh = levelHeight(*b.desc, t.level);
       if (aw != bw || ah != bh) {
-        report("attachment sizes differ at level {}: {} is {}x{}, {} is {}x{}", t.level, a.name, aw, ah, b.name, bw, bh);
+        report("attachment sizes differ at level {}: {} is {}x{}, {} is {}x{}", t.level, a.name, aw, ah, b.name, bw,
+               bh);
       }
     }
   }
@@ -516,6 +546,7 @@ class Validator {
     require(layoutSet_, "no vertex layout set");
     require(hasTarget(), "no render target set");
     require(!d.indexed || indexBuffer_ != kNone, "indexed draw without an index buffer");
+    checkFeedbackLoops();
     if (!ready || !layoutOk_ || d.count == 0) return;
 
     // Problems with the bound resources themselves were reported when they were bound or created.
@@ -531,12 +562,27 @@ class Validator {
                uint64_t(d.first) + d.count, d.first * isz, end, indexBuffer_, ib->size);
         return;
       }
-      const std::span<const uint8_t> idx = contents(*ib).subspan(size_t(d.first * isz), size_t(d.count * isz));
-      const uint8_t* p = idx.data();
+      ShadowBuffer& indices = ib->contents;
+      indices.flush();
+      const uint64_t base = d.first * isz;
       if (isz == 2) {
-        checkVertices(*vb, d.count, [p](uint32_t k) { return uint32_t(p[2 * size_t(k)]) | uint32_t(p[2 * size_t(k) + 1]) << 8; }, true);
+        checkVertices(
+            *vb, d.count,
+            [&indices, base](uint32_t k) {
+              uint8_t b[2];
+              indices.read(base + 2 * uint64_t(k), 2, b);
+              return uint32_t(b[0]) | uint32_t(b[1]) << 8;
+            },
+            d.first);
       } else {
-        checkVertices(*vb, d.count, [p](uint32_t k) { return readLe32(p + 4 * size_t(k)); }, true);
+        checkVertices(
+            *vb, d.count,
+            [&indices, base](uint32_t k) {
+              uint8_t b[4];
+              indices.read(base + 4 * uint64_t(k), 4, b);
+              return readLe32(b);
+            },
+            d.first);
       }
     } else {
       if (uint64_t(d.first) + d.count - 1 > UINT32_MAX) {
@@ -544,7 +590,34 @@ class Validator {
         return;
       }
       const uint32_t first = d.first;
-      checkVertices(*vb, d.count, [first](uint32_t k) { return first + k; }, false);
+      checkVertices(
+          *vb, d.count, [first](uint32_t k) { return first + k; }, -1);
+    }
+  }
+
+  // GL 4.6 §9.3.1: sampling a texture level that is also attached to the render target is undefined
+  // (a feedback loop); docs/spec-choices.md F8 rejects it. Which units a program samples is not
+  // known here, so every bound unit counts. The unit's sampler decides the levels it can read: a
+  // mipmap min filter reaches every level, otherwise only level 0 (GL's base level). Sampler 0
+  // means the default sampler state, whose min filter is a mipmap one.
+  void checkFeedbackLoops() {
+    for (int u = 0; u < kMaxTextureUnits; ++u) {
+      const ResourceId tex = unitTexture_[size_t(u)];
+      if (tex == kNone) continue;
+      std::string attachment;
+      for (int a = 0; a < kMaxColorAttachments; ++a) {
+        if (target_.color[size_t(a)] == tex) attachment = fmt::format("color[{}]", a);
+      }
+      if (target_.depth == tex) attachment = "depth";
+      if (attachment.empty()) continue;
+      const ResourceId smp = unitSampler_[size_t(u)];
+      const bool mipmapped = smp == kNone || usesMipmaps(res_.at(smp).sampler.minFilter);
+      if (mipmapped || target_.level == 0) {
+        report(
+            "texture {} on unit {} is also attached to the render target as {} at level {} (a feedback loop, "
+            "undefined in GL 4.6 §9.3.1)",
+            tex, u, attachment, target_.level);
+      }
     }
   }
 
@@ -558,8 +631,9 @@ class Validator {
   // Checks the `count` vertices vertexOf(0 .. count-1) of a draw against the layout: every
   // attribute fetch inside the buffer, position finite, U32 values exact as float. Reports the first
   // problem of each kind only, so a broken million-vertex draw gives a handful of lines.
+  // `firstIndex` is the draw's first index for indexed draws (to name the index), else -1.
   template <class VertexOf>
-  void checkVertices(Resource& vb, uint32_t count, VertexOf vertexOf, bool indexed) {
+  void checkVertices(Resource& vb, uint32_t count, VertexOf vertexOf, int64_t firstIndex) {
     struct Attr {
       uint32_t offset, bytes;
       uint8_t location, components;
@@ -578,7 +652,8 @@ class Validator {
       const uint64_t need = uint64_t(attrs[i].offset) + attrs[i].bytes;
       maxVertex = need > vb.size ? -1 : std::min<int64_t>(maxVertex, int64_t((vb.size - need) / stride));
     }
-    const std::span<const uint8_t> data = contents(vb);
+    ShadowBuffer& data = vb.contents;
+    data.flush();
     bool reportedFinite = false, reportedU32 = false;
     for (uint32_t k = 0; k < count; ++k) {
       const uint32_t v = vertexOf(k);
@@ -586,30 +661,34 @@ class Validator {
         for (int i = 0; i < n; ++i) {
           const uint64_t begin = uint64_t(v) * stride + attrs[i].offset, end = begin + attrs[i].bytes;
           if (end <= vb.size) continue;
-          report("{}vertex {}: attribute at location {} reads bytes [{}, {}) past the end of vertex buffer {} ({} bytes)",
-                 indexed ? fmt::format("index {} = ", k) : std::string(), v, attrs[i].location, begin, end,
-                 vertexBuffer_, vb.size);
+          const std::string which = firstIndex >= 0 ? fmt::format("index {} = ", firstIndex + k) : std::string();
+          report(
+              "{}vertex {}: attribute at location {} reads bytes [{}, {}) past the end of vertex buffer {} "
+              "({} bytes)",
+              which, v, attrs[i].location, begin, end, vertexBuffer_, vb.size);
           break;
         }
         return;
       }
       if (reportedFinite && reportedU32) continue;  // keep scanning only for out-of-range fetches
-      const uint8_t* base = data.data() + size_t(uint64_t(v) * stride);
       for (int i = 0; i < n; ++i) {
         const Attr& a = attrs[i];
         const bool position = a.location == 0 && a.type == AttribType::F32;
         if (!(position && !reportedFinite) && !(a.type == AttribType::U32 && !reportedU32)) continue;
+        uint8_t fetched[16];
+        data.read(uint64_t(v) * stride + a.offset, a.bytes, fetched);
         for (int c = 0; c < a.components; ++c) {
-          const uint32_t bits = readLe32(base + a.offset + 4 * c);
+          const uint32_t bits = readLe32(fetched + 4 * c);
           if (position && (bits & 0x7f800000u) == 0x7f800000u) {
             report("vertex {}: position (location 0) component {} is {}", v, c, std::bit_cast<float>(bits));
             reportedFinite = true;
             break;
           }
           if (a.type == AttribType::U32 && bits >= kMaxExactU32) {
-            report("vertex {}: U32 attribute at location {} component {} = {} is >= 2^24 (programs receive it as "
-                   "float)",
-                   v, a.location, c, bits);
+            report(
+                "vertex {}: U32 attribute at location {} component {} = {} is >= 2^24 (programs receive it as "
+                "float)",
+                v, a.location, c, bits);
             reportedU32 = true;
             break;
           }
@@ -624,6 +703,7 @@ class Validator {
   std::unordered_map<ResourceId, Resource> res_;
   uint64_t nextId_ = 1;
 
+  std::array<ResourceId, kMaxTextureUnits> unitTexture_{}, unitSampler_{};  // only existing resources
   ResourceId program_ = kNone, vertexBuffer_ = kNone, indexBuffer_ = kNone;
   IndexType indexType_ = IndexType::U16;
   bool layoutSet_ = false, layoutOk_ = false;
@@ -639,11 +719,12 @@ void validateOrThrow(const CommandList& list, std::string_view frameName) {
   const std::vector<Diagnostic> diags = validate(list);
   if (diags.empty()) return;
   constexpr size_t kShown = 10;
-  std::string msg = fmt::format("{}: {} problem{} in the command list", frameName, diags.size(),
-                                diags.size() == 1 ? "" : "s");
+  std::string msg =
+      fmt::format("{}: {} problem{} in the command list", frameName, diags.size(), diags.size() == 1 ? "" : "s");
   for (size_t i = 0; i < diags.size() && i < kShown; ++i) {
     const Diagnostic& d = diags[i];
-    msg += fmt::format("\n  command {} ({}): {}", d.command, commandName(list.commands()[d.command].index()), d.message);
+    msg +=
+        fmt::format("\n  command {} ({}): {}", d.command, commandName(list.commands()[d.command].index()), d.message);
   }
   if (diags.size() > kShown) msg += fmt::format("\n  ... and {} more", diags.size() - kShown);
   throw Error(msg);

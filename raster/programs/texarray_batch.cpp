@@ -10,6 +10,7 @@
 // (GLSL 4.50 §8.9), so the twin computes dFdx/dFdy first and then switches over arrayID.
 // An arrayID outside [0, kMaxArrays) or an unbound array unit gives (0, 0, 0, 1) (incomplete).
 #include <cmath>
+#include <cstring>
 
 #include "raster/programs/common.h"
 
@@ -34,22 +35,32 @@ class TexarrayBatch final : public Program {
       for (int p = 0; p < 4; ++p) s[p] = quad.var[p][0], t[p] = quad.var[p][1];
       // Coarse derivatives (GL 4.6 §8.14.1 with the quad rule of docs/spec-choices.md).
       const float dsdx = s[1] - s[0], dtdx = t[1] - t[0], dsdy = s[2] - s[0], dtdy = t[2] - t[0];
-      for (int p = 0; p < 4; ++p) {
-        const int64_t index = int64_t(std::floor(double(quad.var[p][2]) + 0.5));
-        float tae[4];
-        fetchBuffer(ctx.units[0], index, tae);
-        const float arrayId = tae[0];
-        float c[4][4] = {{0, 0, 0, 1}, {0, 0, 0, 1}, {0, 0, 0, 1}, {0, 0, 0, 1}};
+      // The entry of each pixel; a quad normally lies in one triangle, so one entry for all four.
+      float tae[4][4];
+      for (int p = 0; p < 4; ++p) fetchBuffer(ctx.units[0], int64_t(std::floor(double(quad.var[p][2]) + 0.5)), tae[p]);
+      const bool uniform = std::memcmp(tae[0], tae[1], sizeof tae[0]) == 0 &&
+                           std::memcmp(tae[0], tae[2], sizeof tae[0]) == 0 &&
+                           std::memcmp(tae[0], tae[3], sizeof tae[0]) == 0;
+      float c[4][4] = {{0, 0, 0, 1}, {0, 0, 0, 1}, {0, 0, 0, 1}, {0, 0, 0, 1}};
+      if (uniform) {
+        const float arrayId = tae[0][0];
         if (arrayId >= 0.0f && arrayId < float(kMaxArrays)) {
-          const int unit = 1 + int(arrayId);
-          // All four lanes get this pixel's layer; only lane p is kept. The LOD is the same for
-          // every lane since the derivatives are explicit.
-          const float sp[4] = {s[p], s[p], s[p], s[p]}, tp[4] = {t[p], t[p], t[p], t[p]};
-          const float rp[4] = {tae[1], tae[1], tae[1], tae[1]};
-          sampleGrad2DArray(ctx.units[unit], sp, tp, rp, dsdx, dtdx, dsdy, dtdy, c);
+          const float r[4] = {tae[0][1], tae[1][1], tae[2][1], tae[3][1]};
+          sampleGrad2DArray(ctx.units[1 + int(arrayId)], s, t, r, dsdx, dtdx, dsdy, dtdy, c);
         }
-        storeColor(b.out[q], 0, p, c[0]);
+      } else {
+        // Pixels naming different arrays: one lookup per pixel, the same explicit derivatives.
+        for (int p = 0; p < 4; ++p) {
+          const float arrayId = tae[p][0];
+          if (!(arrayId >= 0.0f && arrayId < float(kMaxArrays))) continue;
+          const float sp[4] = {s[p], s[p], s[p], s[p]}, tp[4] = {t[p], t[p], t[p], t[p]};
+          const float rp[4] = {tae[p][1], tae[p][1], tae[p][1], tae[p][1]};
+          float one[4][4];
+          sampleGrad2DArray(ctx.units[1 + int(arrayId)], sp, tp, rp, dsdx, dtdx, dsdy, dtdy, one);
+          for (int k = 0; k < 4; ++k) c[p][k] = one[0][k];
+        }
       }
+      for (int p = 0; p < 4; ++p) storeColor(b.out[q], 0, p, c[p]);
     }
   }
 };

@@ -23,13 +23,13 @@ TEST(Counters, TextureBindsAreCountedPerUnitWithRedundancy) {
   CommandList l;
   const ResourceId a = l.createTexture({TextureKind::Tex2D, Format::RGBA8, 1, 1, 1, 1});
   const ResourceId b = l.createTexture({TextureKind::Tex2D, Format::RGBA8, 1, 1, 1, 1});
-  l.bindTexture(0, a);  // change
-  l.bindTexture(0, a);  // redundant
-  l.bindTexture(1, a);  // change: unit 1 held 0
-  l.bindTexture(0, b);  // change
+  l.bindTexture(0, a);      // change
+  l.bindTexture(0, a);      // redundant
+  l.bindTexture(1, a);      // change: unit 1 held 0
+  l.bindTexture(0, b);      // change
   l.bindTexture(0, kNone);  // change
   l.bindTexture(2, kNone);  // redundant: units start with 0
-  l.bindTexture(1, a);  // redundant
+  l.bindTexture(1, a);      // redundant
   const FrameCounters c = countCommands(l);
   EXPECT_EQ(c.texture_binds, 7u);
   EXPECT_EQ(c.texture_state_changes, 4u);
@@ -48,9 +48,9 @@ TEST(Counters, SamplerBindsAreCountedPerUnitIndependentlyOfTextures) {
   CommandList l;
   const ResourceId s = l.createSampler({});
   const ResourceId t = l.createSampler({});
-  l.bindSampler(5, s);  // change
-  l.bindSampler(5, s);  // redundant
-  l.bindSampler(5, t);  // change
+  l.bindSampler(5, s);      // change
+  l.bindSampler(5, s);      // redundant
+  l.bindSampler(5, t);      // change
   l.bindSampler(6, kNone);  // redundant
   l.bindTexture(5, kNone);  // redundant texture bind on the same unit
   const FrameCounters c = countCommands(l);
@@ -79,18 +79,53 @@ TEST(Counters, JsonListsOnlyUnitsThatWereBound) {
 
 TEST(Counters, JsonKeysAreTheMemberNames) {
   const auto j = toJson(FrameCounters{});
-  for (const char* key :
-       {"commands", "draw_calls", "indexed_draw_calls", "vertices_submitted", "primitives_submitted", "texture_binds",
-        "texture_state_changes", "redundant_texture_binds", "sampler_binds", "sampler_state_changes",
-        "redundant_sampler_binds", "program_binds", "program_changes", "redundant_program_binds",
-        "vertex_buffer_binds", "vertex_buffer_changes", "redundant_vertex_buffer_binds", "index_buffer_binds",
-        "index_buffer_changes", "redundant_index_buffer_binds", "uniform_updates", "redundant_uniform_updates",
-        "render_target_changes", "redundant_render_target_binds", "vertex_layout_changes",
-        "redundant_vertex_layout_sets", "viewport_changes", "redundant_viewport_sets", "scissor_changes",
-        "redundant_scissor_sets", "depth_state_changes", "redundant_depth_state_sets", "blend_state_changes",
-        "redundant_blend_state_sets", "raster_state_changes", "redundant_raster_state_sets", "state_changes",
-        "redundant_state_changes", "clears", "textures_created", "buffers_created", "samplers_created",
-        "programs_created", "bytes_uploaded", "texture_bytes_uploaded", "buffer_bytes_uploaded", "units"}) {
+  for (const char* key : {"commands",
+                          "draw_calls",
+                          "indexed_draw_calls",
+                          "vertices_submitted",
+                          "primitives_submitted",
+                          "texture_binds",
+                          "texture_state_changes",
+                          "redundant_texture_binds",
+                          "sampler_binds",
+                          "sampler_state_changes",
+                          "redundant_sampler_binds",
+                          "program_binds",
+                          "program_changes",
+                          "redundant_program_binds",
+                          "vertex_buffer_binds",
+                          "vertex_buffer_changes",
+                          "redundant_vertex_buffer_binds",
+                          "index_buffer_binds",
+                          "index_buffer_changes",
+                          "redundant_index_buffer_binds",
+                          "uniform_updates",
+                          "redundant_uniform_updates",
+                          "render_target_changes",
+                          "redundant_render_target_binds",
+                          "vertex_layout_changes",
+                          "redundant_vertex_layout_sets",
+                          "viewport_changes",
+                          "redundant_viewport_sets",
+                          "scissor_changes",
+                          "redundant_scissor_sets",
+                          "depth_state_changes",
+                          "redundant_depth_state_sets",
+                          "blend_state_changes",
+                          "redundant_blend_state_sets",
+                          "raster_state_changes",
+                          "redundant_raster_state_sets",
+                          "state_changes",
+                          "redundant_state_changes",
+                          "clears",
+                          "textures_created",
+                          "buffers_created",
+                          "samplers_created",
+                          "programs_created",
+                          "bytes_uploaded",
+                          "texture_bytes_uploaded",
+                          "buffer_bytes_uploaded",
+                          "units"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
   EXPECT_EQ(j.size(), 47u);
@@ -102,15 +137,15 @@ TEST(Counters, ProgramAndBufferBindsCountChangesAndRedundancy) {
   const ResourceId q = l.createProgram("b");
   const ResourceId vb = l.createBuffer(BufferKind::Vertex, 16);
   const ResourceId ib = l.createBuffer(BufferKind::Index, 16);
-  l.useProgram(kNone);  // redundant
-  l.useProgram(p);      // change
-  l.useProgram(p);      // redundant
-  l.useProgram(q);      // change
-  l.bindVertexBuffer(vb);  // change
-  l.bindVertexBuffer(vb);  // redundant
-  l.bindIndexBuffer(ib, IndexType::U16);  // change
-  l.bindIndexBuffer(ib, IndexType::U16);  // redundant
-  l.bindIndexBuffer(ib, IndexType::U32);  // change: the type is part of the binding
+  l.useProgram(kNone);                       // redundant
+  l.useProgram(p);                           // change
+  l.useProgram(p);                           // redundant
+  l.useProgram(q);                           // change
+  l.bindVertexBuffer(vb);                    // change
+  l.bindVertexBuffer(vb);                    // redundant
+  l.bindIndexBuffer(ib, IndexType::U16);     // change
+  l.bindIndexBuffer(ib, IndexType::U16);     // redundant
+  l.bindIndexBuffer(ib, IndexType::U32);     // change: the type is part of the binding
   l.bindIndexBuffer(kNone, IndexType::U16);  // change
   const FrameCounters c = countCommands(l);
   EXPECT_EQ(c.program_binds, 4u);
@@ -133,12 +168,12 @@ TEST(Counters, UniformUpdatesAreRedundantWhenTheProgramAlreadyHoldsTheBytes) {
   const ResourceId p = l.createProgram("a");
   const ResourceId q = l.createProgram("b");
   l.useProgram(p);
-  l.setUniforms(0, std::vector<float>{0, 0, 0, 0});  // redundant: uniforms start at zero
-  l.setUniforms(0, std::vector<float>{1, 2, 3, 4});  // change
-  l.setUniforms(0, std::vector<float>{1, 2, 3, 4});  // redundant
-  l.setUniforms(1, std::vector<float>{1, 2, 3, 4});  // change: another slot
+  l.setUniforms(0, std::vector<float>{0, 0, 0, 0});              // redundant: uniforms start at zero
+  l.setUniforms(0, std::vector<float>{1, 2, 3, 4});              // change
+  l.setUniforms(0, std::vector<float>{1, 2, 3, 4});              // redundant
+  l.setUniforms(1, std::vector<float>{1, 2, 3, 4});              // change: another slot
   l.setUniforms(0, std::vector<float>{1, 2, 3, 4, 1, 2, 3, 4});  // redundant: both slots hold it
-  l.setUniforms(0, std::vector<float>{-0.0f, 2, 3, 4});  // change: -0 differs from +0 in bits
+  l.setUniforms(0, std::vector<float>{-0.0f, 2, 3, 4});          // change: -0 differs from +0 in bits
   l.useProgram(q);
   l.setUniforms(1, std::vector<float>{1, 2, 3, 4});  // change: q has its own storage
   l.useProgram(p);
@@ -153,26 +188,26 @@ TEST(Counters, UniformUpdatesAreRedundantWhenTheProgramAlreadyHoldsTheBytes) {
 
 TEST(Counters, FixedFunctionStateIsRedundantWhenSetToTheCurrentValue) {
   CommandList l;
-  l.setViewport({});                 // redundant: default Rect
-  l.setViewport({0, 0, 64, 64});     // change
-  l.setViewport({0, 0, 64, 64});     // redundant
-  l.setScissor({});                  // redundant
-  l.setScissor({true, {0, 0, 1, 1}});  // change
-  l.setDepthState({});               // redundant
+  l.setViewport({});                                 // redundant: default Rect
+  l.setViewport({0, 0, 64, 64});                     // change
+  l.setViewport({0, 0, 64, 64});                     // redundant
+  l.setScissor({});                                  // redundant
+  l.setScissor({true, {0, 0, 1, 1}});                // change
+  l.setDepthState({});                               // redundant
   l.setDepthState({true, true, CompareFunc::Less});  // change
   l.setDepthState({true, true, CompareFunc::Less});  // redundant
-  l.setRasterState({});              // redundant
-  l.setRasterState({CullMode::Back, true, 0});  // change
-  l.setVertexLayout({});             // redundant
+  l.setRasterState({});                              // redundant
+  l.setRasterState({CullMode::Back, true, 0});       // change
+  l.setVertexLayout({});                             // redundant
   VertexLayout v;
   v.stride = 16;
-  l.setVertexLayout(v);              // change
-  l.setVertexLayout(v);              // redundant
+  l.setVertexLayout(v);  // change
+  l.setVertexLayout(v);  // redundant
   RenderTarget t;
-  l.setRenderTarget(t);              // redundant: the initial target is all kNone
+  l.setRenderTarget(t);  // redundant: the initial target is all kNone
   t.color[0] = 9;
-  l.setRenderTarget(t);              // change
-  l.setRenderTarget(t);              // redundant
+  l.setRenderTarget(t);  // change
+  l.setRenderTarget(t);  // redundant
   const FrameCounters c = countCommands(l);
   EXPECT_EQ(c.viewport_changes, 1u);
   EXPECT_EQ(c.redundant_viewport_sets, 2u);

@@ -194,4 +194,4 @@ INSTANTIATE_TEST_SUITE_P(AllScenes, ThreadInvariance, ::testing::ValuesIn([] {
                            for (const auto& s : scenes::all()) names.emplace_back(s.name);
                            return names;
                          }()),
-                         [](const auto& info) { return info.param; });
+                         [](const auto& param) { return param.param; });

@@ -87,6 +87,9 @@ TEST(Wrap, RepeatHandlesCoordinatesFarOutsideTheTexture) {
   EXPECT_EQ(wrapCoord(Wrap::Repeat, 1000000000003LL, 4), 3);
   EXPECT_EQ(wrapCoord(Wrap::Repeat, -1000000000003LL, 4), 1);
   EXPECT_EQ(wrapCoord(Wrap::Repeat, int64_t(1) << 60, 16384), 0);
+  EXPECT_EQ(wrapCoord(Wrap::Repeat, -1, 2147483647), 2147483646);
+  EXPECT_EQ(wrapCoord(Wrap::MirroredRepeat, -1, 2147483647), 0);
+  EXPECT_EQ(wrapCoord(Wrap::MirroredRepeat, 2147483647, 2147483647), 2147483646);
 }
 
 TEST(Wrap, MirroredRepeatReflectsEveryOtherPeriod) {
@@ -126,10 +129,10 @@ TEST(SampleWrap, RepeatNearestReadsNegativeCoordinatesFromTheOppositeEdge) {
   TextureData t(desc2D(Format::R8, 4, 1));
   for (uint32_t x = 0; x < 4; ++x) setU8(t, 0, 0, x, 0, {uint8_t(10 * (x + 1))});
   const TexUnit u = unit(&t, sampler(Filter::Nearest, Filter::Nearest, Wrap::Repeat));
-  EXPECT_EQ(at(u, -0.1f, 0.5f, 0)[0], unorm(40));   // u = -0.4 -> -1 -> 3
-  EXPECT_EQ(at(u, -0.3f, 0.5f, 0)[0], unorm(30));   // u = -1.2 -> -2 -> 2
-  EXPECT_EQ(at(u, -1.1f, 0.5f, 0)[0], unorm(40));   // u = -4.4 -> -5 -> 3
-  EXPECT_EQ(at(u, 1.3f, 0.5f, 0)[0], unorm(20));    // u = 5.2 -> 5 -> 1
+  EXPECT_EQ(at(u, -0.1f, 0.5f, 0)[0], unorm(40));  // u = -0.4 -> -1 -> 3
+  EXPECT_EQ(at(u, -0.3f, 0.5f, 0)[0], unorm(30));  // u = -1.2 -> -2 -> 2
+  EXPECT_EQ(at(u, -1.1f, 0.5f, 0)[0], unorm(40));  // u = -4.4 -> -5 -> 3
+  EXPECT_EQ(at(u, 1.3f, 0.5f, 0)[0], unorm(20));   // u = 5.2 -> 5 -> 1
 }
 
 TEST(SampleWrap, MirroredRepeatNearestReflectsNegativeCoordinates) {
@@ -146,7 +149,7 @@ TEST(SampleWrap, ClampToEdgeLinearAtTheEdgeReturnsTheEdgeTexel) {
   TextureData t(desc2D(Format::R8, 4, 1));
   for (uint32_t x = 0; x < 4; ++x) setU8(t, 0, 0, x, 0, {uint8_t(10 * (x + 1))});
   const TexUnit u = unit(&t, sampler(Filter::Linear, Filter::Linear, Wrap::ClampToEdge));
-  EXPECT_EQ(at(u, 0.0f, 0.5f, 0)[0], unorm(10));   // i0 = -1 and i1 = 0 both clamp to 0
+  EXPECT_EQ(at(u, 0.0f, 0.5f, 0)[0], unorm(10));  // i0 = -1 and i1 = 0 both clamp to 0
   EXPECT_EQ(at(u, -3.0f, 0.5f, 0)[0], unorm(10));
   EXPECT_EQ(at(u, 1.0f, 0.5f, 0)[0], unorm(40));
 }
@@ -157,6 +160,28 @@ TEST(SampleWrap, RepeatLinearBlendsTheLastAndFirstTexelAcrossTheSeam) {
   const TexUnit u = unit(&t, sampler(Filter::Linear, Filter::Linear, Wrap::Repeat));
   // s = 0: u = 0, i0 = -1 -> 3 (40), i1 = 0 (10), alpha = 1/2; the row (beta = 0) has weight 256.
   EXPECT_EQ(at(u, 0.0f, 0.5f, 0)[0], unormSum((128ull * 40 + 128ull * 10) * 256 * 256));
+}
+
+TEST(SampleWrap, RepeatLinearOnANonPowerOfTwoWidthWrapsTheRightNeighbour) {
+  TextureData t(desc2D(Format::R8, 3, 1));
+  for (uint32_t x = 0; x < 3; ++x) setU8(t, 0, 0, x, 0, {uint8_t(10 * (x + 1))});
+  const TexUnit u = unit(&t, sampler(Filter::Linear, Filter::Linear, Wrap::Repeat));
+  // s = 1: u = 3, i0 = 2 (30), i1 = 3 -> 0 (10), alpha = 1/2.
+  EXPECT_EQ(at(u, 1.0f, 0.5f, 0)[0], unormSum((128ull * 30 + 128ull * 10) << 16));
+  // s = -2: u = -6, i0 = -7 -> 2 (30), i1 = -6 -> 0 (10).
+  EXPECT_EQ(at(u, -2.0f, 0.5f, 0)[0], unormSum((128ull * 30 + 128ull * 10) << 16));
+  // s = -1/6 (u = -0.5 up to float rounding of s): i0 = -1 -> 2, alpha ~ 0: texel 2.
+  EXPECT_EQ(at(u, -1.0f / 6.0f, 0.5f, 0)[0], unorm(30));
+}
+
+TEST(SampleWrap, MirroredRepeatLinearAtTheEdgeReadsTheEdgeTexelTwice) {
+  TextureData t(desc2D(Format::R8, 4, 1));
+  for (uint32_t x = 0; x < 4; ++x) setU8(t, 0, 0, x, 0, {uint8_t(10 * (x + 1))});
+  const TexUnit u = unit(&t, sampler(Filter::Linear, Filter::Linear, Wrap::MirroredRepeat));
+  EXPECT_EQ(at(u, 0.0f, 0.5f, 0)[0], unorm(10));  // i0 = -1 -> 0, i1 = 0
+  EXPECT_EQ(at(u, 1.0f, 0.5f, 0)[0], unorm(40));  // i0 = 3, i1 = 4 -> 3
+  // s = -0.25: u = -1, i0 = -2 -> 1 (20), i1 = -1 -> 0 (10), alpha = 1/2.
+  EXPECT_EQ(at(u, -0.25f, 0.5f, 0)[0], unormSum((128ull * 20 + 128ull * 10) << 16));
 }
 
 TEST(SampleWrap, ClampToBorderLinearBlendsTheBorderColourHalfway) {
@@ -243,8 +268,7 @@ TEST(SampleFilter, LinearWeightsAreRoundedToEightBitsHalfToEven) {
   const struct {
     double u256;
     int alpha8;
-  } cases[] = {{128.5, 0},  {129.5, 2},  {130.5, 2},    {131.5, 4},
-               {129.25, 1}, {129.75, 2}, {383.25, 255}, {383.5, 256}};
+  } cases[] = {{128.5, 0}, {129.5, 2}, {130.5, 2}, {131.5, 4}, {129.25, 1}, {129.75, 2}, {383.25, 255}, {383.5, 256}};
   for (const auto& c : cases) {
     const float s = float(c.u256 / 512.0);  // exact
     EXPECT_EQ(at(u, s, 0.5f, 0)[0], float(c.alpha8 / 256.0)) << "256u = " << c.u256;
@@ -518,12 +542,12 @@ TEST(Log2Fixed, IsExactOnPowersOfTwo) {
 }
 
 TEST(Log2Fixed, RoundsKnownValuesToNearest) {
-  EXPECT_EQ(log2Fixed(3.0, 8), 406);     // 405.75
-  EXPECT_EQ(log2Fixed(5.0, 7), 297);     // 297.21
-  EXPECT_EQ(log2Fixed(0.75, 8), -106);   // -106.25
-  EXPECT_EQ(log2Fixed(1.5, 8), 150);     // 149.75
-  EXPECT_EQ(log2Fixed(10.0, 0), 3);      // 3.32
-  EXPECT_EQ(log2Fixed(12.0, 0), 4);      // 3.58
+  EXPECT_EQ(log2Fixed(3.0, 8), 406);       // 405.75
+  EXPECT_EQ(log2Fixed(5.0, 7), 297);       // 297.21
+  EXPECT_EQ(log2Fixed(0.75, 8), -106);     // -106.25
+  EXPECT_EQ(log2Fixed(1.5, 8), 150);       // 149.75
+  EXPECT_EQ(log2Fixed(10.0, 0), 3);        // 3.32
+  EXPECT_EQ(log2Fixed(12.0, 0), 4);        // 3.58
   EXPECT_EQ(log2Fixed(1.5, 24), 9814042);  // floor(2^24 log2 1.5) = floor(9814042.23)
 }
 
@@ -796,8 +820,7 @@ TEST(Incomplete, IntegerTextureWithNearestFiltersReturnsTheIntegerAsFloat) {
 TEST(Incomplete, BufferTexturesCannotBeSampledWithFilters) {
   const BufferData b = bufferOf<float>({1, 2, 3, 4});
   const TextureData t = bufferTexture(Format::RGBA32F, &b);
-  EXPECT_EQ(at(unit(&t, sampler(Filter::Nearest, Filter::Nearest)), 0.1f, 0.1f, 0),
-            (std::array<float, 4>{0, 0, 0, 1}));
+  EXPECT_EQ(at(unit(&t, sampler(Filter::Nearest, Filter::Nearest)), 0.1f, 0.1f, 0), (std::array<float, 4>{0, 0, 0, 1}));
 }
 
 // --- float formats -------------------------------------------------------------------------------

@@ -38,4 +38,4 @@ INSTANTIATE_TEST_SUITE_P(AllScenes, SceneHashes, ::testing::ValuesIn([] {
                            for (const auto& s : scenes::all()) names.emplace_back(s.name);
                            return names;
                          }()),
-                         [](const auto& info) { return info.param; });
+                         [](const auto& param) { return param.param; });

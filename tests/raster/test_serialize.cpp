@@ -1,7 +1,6 @@
 // The .tframe encoding: exact round trips, and a decoder that turns every truncated, corrupted or
 // hostile file into an Error naming the place, never a crash (run under ASan/UBSan).
 #include <gtest/gtest.h>
-
 #include <unistd.h>
 
 #include <bit>
@@ -165,7 +164,9 @@ TEST(Serialize, TheHeaderHasTheDocumentedLayout) {
   const CommandList l = everyKind();
   const auto f = encodeFrame(l);
   EXPECT_EQ(std::memcmp(f.data(), "TSFRAME\0", 8), 0);
-  auto u32 = [&](size_t at) { return uint32_t(f[at]) | uint32_t(f[at + 1]) << 8 | uint32_t(f[at + 2]) << 16 | uint32_t(f[at + 3]) << 24; };
+  auto u32 = [&](size_t at) {
+    return uint32_t(f[at]) | uint32_t(f[at + 1]) << 8 | uint32_t(f[at + 2]) << 16 | uint32_t(f[at + 3]) << 24;
+  };
   auto u64 = [&](size_t at) { return uint64_t(u32(at)) | uint64_t(u32(at + 4)) << 32; };
   EXPECT_EQ(u32(8), 1u);
   EXPECT_EQ(u32(12), 72u);
@@ -178,6 +179,29 @@ TEST(Serialize, TheHeaderHasTheDocumentedLayout) {
   EXPECT_EQ(u32(74), 26u);
   // The blob is the tail of the file.
   EXPECT_TRUE(std::equal(l.blob().begin(), l.blob().end(), f.end() - ptrdiff_t(l.blob().size())));
+}
+
+TEST(Serialize, PayloadSizesAreThoseOfTheFormatDocument) {
+  // docs/tframe-format.md, "Commands"; -1 marks the string-carrying kinds (fixed part + length).
+  constexpr int kFixed[] = {26, 28, 13, 28, 36, -1, 8, 8, 4, 24, 4, 60, 5, 16, 17, 3, 23, 3, 28, 20, 4, 10, -1};
+  static_assert(std::size(kFixed) == std::variant_size_v<Command>);
+  const CommandList l = everyKind();
+  const auto f = encodeFrame(l);
+  size_t at = kFrameHeaderSize;
+  for (const Command& c : l.commands()) {
+    const size_t opcode = f[at] | f[at + 1] << 8;
+    const uint32_t size = f[at + 2] | f[at + 3] << 8 | f[at + 4] << 16 | uint32_t(f[at + 5]) << 24;
+    EXPECT_EQ(opcode, c.index());
+    if (const auto* p = std::get_if<CreateProgram>(&c)) {
+      EXPECT_EQ(size, 8 + p->name.size());
+    } else if (const auto* m = std::get_if<Marker>(&c)) {
+      EXPECT_EQ(size, 4 + m->text.size());
+    } else {
+      EXPECT_EQ(int(size), kFixed[opcode]) << commandName(opcode);
+    }
+    at += 6 + size;
+  }
+  EXPECT_EQ(at, f.size() - l.blob().size());
 }
 
 TEST(Serialize, TruncationAtEveryByteOffsetIsAnError) {
@@ -292,10 +316,12 @@ TEST(Serialize, APayloadSizeThatDoesNotMatchTheFieldsIsAnError) {
   auto f = encodeFrame(l);
   putU32(f, 74, 3);  // ClearDepth needs 4
   reseal(f);
-  EXPECT_NE(errorOf(f).find("command 0 (ClearDepth) at byte 78: field depth is truncated"), std::string::npos) << errorOf(f);
+  EXPECT_NE(errorOf(f).find("command 0 (ClearDepth) at byte 78: field depth is truncated"), std::string::npos)
+      << errorOf(f);
   putU32(f, 74, 5);  // one byte too many: eats the next command's first byte
   reseal(f);
-  EXPECT_NE(errorOf(f).find("payloadSize = 5 but the fields of ClearDepth use 4 bytes"), std::string::npos) << errorOf(f);
+  EXPECT_NE(errorOf(f).find("payloadSize = 5 but the fields of ClearDepth use 4 bytes"), std::string::npos)
+      << errorOf(f);
 }
 
 TEST(Serialize, ABoolOtherThanZeroOrOneIsAnError) {
@@ -417,9 +443,8 @@ TEST(Serialize, EncodingRejectsWhatTheDecoderWouldReject) {
 class FrameFiles : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("tessera_serialize_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = std::filesystem::temp_directory_path() / ("tessera_serialize_" + std::to_string(::getpid()) + "_" +
+                                                     ::testing::UnitTest::GetInstance()->current_test_info()->name());
     std::filesystem::remove_all(dir_);
     std::filesystem::create_directories(dir_);
   }
