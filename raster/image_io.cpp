@@ -71,6 +71,34 @@ void writeImage(const TextureData& tex, uint32_t level, uint32_t layer, const st
   writeAtomically(path, spec, px.data());
 }
 
+DecodedImage readImage(const std::string& path) {
+  // Read PNG alpha as stored: without this OIIO premultiplies colour by alpha on input.
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(path, &config);
+  if (!in) throw Error(path + ": cannot read image: " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  DecodedImage img;
+  img.width = spec.width;
+  img.height = spec.height;
+  img.channels = spec.nchannels;
+  OIIO::TypeDesc type = spec.format;
+  if (type == OIIO::TypeDesc::UINT8) {
+    img.bitsPerChannel = 8;
+  } else if (type == OIIO::TypeDesc::UINT32 || type == OIIO::TypeDesc::INT32) {
+    img.bitsPerChannel = 32;
+    type = OIIO::TypeDesc::UINT32;
+  } else {
+    img.bitsPerChannel = 32;
+    img.isFloat = true;
+    type = OIIO::TypeDesc::FLOAT;
+  }
+  img.pixels.resize(size_t(img.width) * img.height * img.channels * (img.bitsPerChannel / 8));
+  if (!in->read_image(0, 0, 0, img.channels, type, img.pixels.data()))
+    throw Error(path + ": cannot decode image: " + in->geterror());
+  return img;
+}
+
 void writePngRGBA8(const std::string& path, int width, int height, const uint8_t* topDownRows) {
   OIIO::ImageSpec spec(width, height, 4, OIIO::TypeDesc::UINT8);
   spec.alpha_channel = 3;

@@ -22,6 +22,16 @@ std::string imageSha256(const TextureData& tex, uint32_t level, uint32_t layer);
 std::string imageExtension(Format f);
 // Writes the image; throws Error naming the path on failure; never leaves a partial file.
 void writeImage(const TextureData& tex, uint32_t level, uint32_t layer, const std::string& path);
+// A decoded image file: pixels top row first, channels interleaved, as imagePixels() lays them out.
+struct DecodedImage {
+  int width = 0, height = 0, channels = 0;
+  int bitsPerChannel = 0;  // 8, or 32 for float / uint
+  bool isFloat = false;
+  std::vector<uint8_t> pixels;
+};
+// Reads a PNG / EXR written by writeImage (or any OIIO-readable file); throws Error naming the path.
+DecodedImage readImage(const std::string& path);
+
 // Writes tightly packed RGBA8 rows (top row first) as PNG, atomically.
 void writePngRGBA8(const std::string& path, int width, int height, const uint8_t* topDownRows);
 

@@ -72,7 +72,7 @@ PY
     ;;
   help_explains_every_command)
     "$tessera" --help > help.txt
-    for c in scenes render replay validate hashes demo; do grep -q "$c" help.txt || fail "--help lacks $c"; done
+    for c in scenes render replay validate golden demo; do grep -q "$c" help.txt || fail "--help lacks $c"; done
     "$tessera" render --help | grep -q -- "--record" || fail "render --help lacks --record"
     ;;
   *) fail "unknown case $case_name" ;;

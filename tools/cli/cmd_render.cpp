@@ -66,27 +66,6 @@ void addRenderCommands(CLI::App& app) {
     std::printf("%s\n", runFrame(list, job).dump(2).c_str());
   });
 
-  auto hp = std::make_shared<std::string>();
-  auto* hashes = app.add_subcommand(
-      "hashes", "Render every built-in scene at its default size and print {scene: [image_sha256...]} as JSON; "
-                "golden/scene_hashes.json is this output, checked bit-exactly by the tests of every build type");
-  hashes->add_option("-o,--output", *hp, "Write the JSON to this file (atomically) instead of stdout");
-  hashes->callback([hp] {
-    nlohmann::json j = nlohmann::json::object();
-    for (const scenes::SceneInfo& s : scenes::all()) {
-      FrameJob job;
-      job.name = std::string(s.name);
-      const nlohmann::json r = runFrame(scenes::build(s.name, s.width, s.height), job);
-      nlohmann::json list = nlohmann::json::array();
-      for (const auto& img : r["images"]) list.push_back(img["image_sha256"]);
-      j[job.name] = list;
-    }
-    if (hp->empty())
-      std::printf("%s\n", j.dump(2).c_str());
-    else
-      writeTextFile(*hp, j.dump(2) + "\n");
-  });
-
   auto vp = std::make_shared<std::string>();
   auto* validateCmd = app.add_subcommand("validate", "Check a .tframe file and list every problem found (exit 1 if any)");
   validateCmd->add_option("frame", *vp, "A .tframe file")->required();

@@ -7,5 +7,6 @@ namespace tessera::cli {
 
 void addRenderCommands(CLI::App& app);  // scenes, render, replay, validate (cmd_render.cpp)
 void addDemoCommand(CLI::App& app);     // demo (cmd_demo.cpp)
+void addGoldenCommands(CLI::App& app);  // golden check / update (cmd_golden.cpp)
 
 }  // namespace tessera::cli

@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   tessera::cli::addRenderCommands(app);
   tessera::cli::addDemoCommand(app);
+  tessera::cli::addGoldenCommands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
