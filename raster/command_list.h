@@ -146,6 +146,12 @@ class CommandList {
   const std::vector<uint8_t>& blob() const { return blob_; }
   uint32_t resourceCount() const { return nextId_ - 1; }
 
+  // Keeps the first n commands (the blob is kept whole, so every range stays valid). Used to replay a
+  // prefix of a frame, e.g. for draw-level bisection.
+  void truncate(size_t n) {
+    if (n < cmds_.size()) cmds_.resize(n);
+  }
+
   // Raw construction for readers (serialize.cpp): appends without interpretation.
   void appendRaw(Command c);
   BlobRange appendBlob(std::span<const uint8_t> bytes);

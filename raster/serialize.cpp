@@ -425,9 +425,12 @@ std::vector<uint8_t> encodeFrame(const CommandList& list) {
     putLe(out, sizeAt, out.size() - sizeAt - 4, 4);
     maxCreated = std::max(maxCreated, createdId(cmds[i]));
   }
-  if (uint64_t(list.nextId()) != uint64_t(maxCreated) + 1) {
-    throw Error(fmt::format("encodeFrame: the list's next id {} does not follow its highest created id {}",
-                            list.nextId(), maxCreated));
+  // The file's next id is derived from the commands rather than copied from list.nextId(): a list cut
+  // short (CommandList::truncate, bisection) keeps a larger nextId() that means nothing in a file, and
+  // a derived value lets the decoder check the (unchecksummed) header field exactly.
+  const uint64_t nextId = uint64_t(maxCreated) + 1;
+  if (nextId > std::numeric_limits<uint32_t>::max()) {
+    throw Error(fmt::format("encodeFrame: created id {} leaves no next id", maxCreated));
   }
   out.insert(out.end(), blob.begin(), blob.end());
 
@@ -436,7 +439,7 @@ std::vector<uint8_t> encodeFrame(const CommandList& list) {
   putLe(out, kOffHeaderSize, kFrameHeaderSize, 4);
   putLe(out, kOffCommandCount, cmds.size(), 8);
   putLe(out, kOffBlobSize, blob.size(), 8);
-  putLe(out, kOffNextId, list.nextId(), 8);
+  putLe(out, kOffNextId, nextId, 8);
   const auto digest = sha256(std::span(out).subspan(kFrameHeaderSize));
   std::memcpy(out.data() + kOffChecksum, digest.data(), digest.size());
   return out;

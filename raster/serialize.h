@@ -23,8 +23,9 @@ constexpr uint32_t kFrameVersion = 1;
 constexpr uint32_t kFrameHeaderSize = 72;        // magic 8 + version 4 + header size 4 + 3 x u64 + sha 32
 constexpr uint32_t kFrameMaxStringBytes = 4096;  // program names and marker texts
 
-// Throws Error if the list cannot be represented (a string longer than kFrameMaxStringBytes, a
-// next id that does not follow the created ids, a blob range outside the blob).
+// Throws Error if the list cannot be represented (a string longer than kFrameMaxStringBytes, an
+// out-of-range enum, a blob range outside the blob). The file's next id is 1 + the highest created
+// id, whatever list.nextId() says (they differ only for lists cut short or built with appendRaw).
 std::vector<uint8_t> encodeFrame(const CommandList& list);
 // `sourceName` prefixes every error message (usually the file name).
 CommandList decodeFrame(std::span<const uint8_t> bytes, std::string_view sourceName);
