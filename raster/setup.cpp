@@ -5,14 +5,6 @@
 
 namespace tessera::detail {
 
-int64_t roundHalfEven(double v) {
-  const double f = std::floor(v);
-  const double diff = v - f;  // exact: v and f are within one unit of each other
-  int64_t i = int64_t(f);
-  if (diff > 0.5 || (diff == 0.5 && (i & 1))) ++i;
-  return i;
-}
-
 namespace {
 
 struct WindowVertex {

@@ -26,8 +26,15 @@ struct SetupParams {
 void setupTriangle(const VertexOut (&v)[3], uint32_t primitiveId, uint32_t layer, const SetupParams& params,
                    Scene& scene, PipelineStats& stats);
 
-// Round half to even of a finite double to int64 (the snapping rule; never depends on the FPU
-// rounding mode).
-int64_t roundHalfEven(double v);
+// Round half to even of a finite double with |v| < 2^62 to int64 (the snapping and unorm conversion
+// rule; never depends on the FPU rounding mode). Inline: it runs per pixel and channel.
+inline int64_t roundHalfEven(double v) {
+  // Truncation then a correction gives floor without a libm call.
+  int64_t f = int64_t(v);
+  if (double(f) > v) --f;
+  const double diff = v - double(f);  // exact: v and f are within one unit of each other
+  if (diff > 0.5 || (diff == 0.5 && (f & 1))) ++f;
+  return f;
+}
 
 }  // namespace tessera::detail
