@@ -340,6 +340,8 @@ struct CpuBackend::Impl {
   void apply(const CommandList&, const SetRenderTarget& c) { setTarget(c.target); }
   void apply(const CommandList&, const ClearColor& c) { clear(TileOp::ClearColor, c.attachment, c.bits); }
   void apply(const CommandList&, const ClearDepth& c) {
+    // glClear honours the depth write mask (GL 4.6 §17.4.3), whether or not the depth test is on.
+    if (!depth.write) return;
     std::array<uint32_t, 4> bits{};
     std::memcpy(bits.data(), &c.depth, 4);
     clear(TileOp::ClearDepth, 0, bits);

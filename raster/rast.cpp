@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstring>
 
 #include "raster/fragops.h"
@@ -40,6 +41,24 @@ void runClear(const Scene& scene, const ClearCmd& c, TextureData* tex, const Til
   if (x0 > x1 || y0 > y1) return;
   uint8_t value[16];
   encodeClear(tex->desc.format, c.bits, value);
+  // Provenance: a clear is exact, except that GL may convert a unorm clear colour in float32, where
+  // c * 255 can round onto a .5 tie (0.9f * 255 = 229.5 in float, 229.4999... exactly): then either
+  // neighbour is legal (OUTPUT_ROUNDING).
+  uint8_t clo[16], chi[16];
+  std::memcpy(clo, value, 16);
+  std::memcpy(chi, value, 16);
+  uint16_t ccls = 0;
+  if (tex->prov && isUnorm(tex->desc.format)) {
+    float v[4];
+    std::memcpy(v, c.bits.data(), sizeof v);
+    for (int k = 0; k < channelCount(tex->desc.format); ++k) {
+      const double x = (v[k] > 0.0f ? (v[k] < 1.0f ? double(v[k]) : 1.0) : 0.0) * 255.0;
+      const double tol = x * (1.0 / 4194304.0);  // 2^-22: a float32 product's rounding, with margin
+      const int lo = std::max(0, int(std::ceil(x - tol - 0.5))), hi = std::min(255, int(std::floor(x + tol + 0.5)));
+      if (lo != value[k] || hi != value[k]) ccls = kOutputRounding;
+      clo[k] = uint8_t(std::min<int>(lo, value[k])), chi[k] = uint8_t(std::max<int>(hi, value[k]));
+    }
+  }
   const uint32_t bpp = texelBytes(tex->desc.format);
   const TargetView& t = scene.target;
   const uint32_t l0 = t.layer == kLayered ? 0 : t.layer, l1 = t.layer == kLayered ? t.layerCount : t.layer + 1;
@@ -47,12 +66,12 @@ void runClear(const Scene& scene, const ClearCmd& c, TextureData* tex, const Til
     for (int32_t y = y0; y <= y1; ++y) {
       uint8_t* row = tex->texel(t.level, layer, uint32_t(x0), uint32_t(y));
       for (int32_t x = x0; x <= x1; ++x, row += bpp) std::memcpy(row, value, bpp);
-      if (tex->prov) {  // a cleared texel is exact: its interval collapses to the value
+      if (tex->prov) {
         Provenance& pv = *tex->prov;
         for (int32_t x = x0; x <= x1; ++x) {
-          std::memcpy(pv.lo->texel(t.level, layer, uint32_t(x), uint32_t(y)), value, bpp);
-          std::memcpy(pv.hi->texel(t.level, layer, uint32_t(x), uint32_t(y)), value, bpp);
-          pv.cls(*tex, t.level, layer, uint32_t(x), uint32_t(y)) = 0;
+          std::memcpy(pv.lo->texel(t.level, layer, uint32_t(x), uint32_t(y)), clo, bpp);
+          std::memcpy(pv.hi->texel(t.level, layer, uint32_t(x), uint32_t(y)), chi, bpp);
+          pv.cls(*tex, t.level, layer, uint32_t(x), uint32_t(y)) = ccls;
         }
       }
     }

@@ -5,7 +5,9 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <limits>
 #include <memory>
 
@@ -44,6 +46,7 @@ struct RayContext {
   const std::vector<DrawGeom>* draws;
   Best* best;
   int32_t px, py;
+  float clearT;  // t of the cleared depth: the first fragment must pass the depth test against it
 };
 
 // Does a hit on `candidate` at depth t replace `best`? Smaller t wins; an exact tie is resolved as
@@ -71,6 +74,10 @@ void filter(const RTCFilterFunctionNArguments* args) {
       continue;
     }
     const float t = RTCRayN_tfar(args->ray, args->N, i);  // the potential hit's distance
+    if (d.func == CompareFunc::Less ? !(t < ctx->clearT) : !(t <= ctx->clearT)) {
+      args->valid[i] = 0;
+      continue;
+    }
     const uint32_t global = d.global[prim];
     if (replaces(draws, t, global, geom, *ctx->best)) {
       *ctx->best = {t, global, geom};
@@ -80,11 +87,19 @@ void filter(const RTCFilterFunctionNArguments* args) {
   }
 }
 
-DevicePtr newDevice(const std::vector<std::string>& isas, std::string& chosen) {
+DevicePtr newDevice(const std::vector<std::string>& isas, int threads, std::string& chosen) {
   for (const std::string& isa : isas) {
-    // threads=1: the BVH build runs on one thread; the answer does not depend on the BVH anyway
-    // (see the filter), but a fixed build keeps timings and memory comparable.
-    const std::string config = "isa=" + isa + ",threads=1";
+    // Embree silently falls back to SSE2 for a name it does not know: refuse those instead, or the
+    // report would claim an ISA that was never used.
+    static const char* kKnown[] = {"sse2", "sse4.2", "avx", "avx2", "avx512"};
+    if (std::find(std::begin(kKnown), std::end(kKnown), isa) == std::end(kKnown))
+      throw Error("visibility: unknown Embree ISA '" + isa + "' (known: sse2, sse4.2, avx, avx2, avx512)");
+    // Only the ISA is pinned: it decides Embree's float arithmetic. The thread count is the caller's:
+    // Embree's TBB backend turns "threads=N" into a process-wide tbb::global_control while the
+    // device lives, so "threads=1" would also serialize the row loop below (measured: 2x slower on
+    // 2 cores). The BVH may then differ between runs, which the filter makes irrelevant.
+    std::string config = "isa=" + isa;
+    if (threads > 0) config += ",threads=" + std::to_string(threads);
     RTCDevice d = rtcNewDevice(config.c_str());
     if (d && rtcGetDeviceError(d) == RTC_ERROR_NONE) {
       chosen = isa;
@@ -102,10 +117,10 @@ EmbreeImage traceScene(const VisibilityScene& scene, const std::vector<std::stri
   img.width = scene.width;
   img.height = scene.height;
   img.triangle.assign(size_t(scene.width) * size_t(scene.height), kNoHit);
-  DevicePtr device = newDevice(isas, img.isa);
+  DevicePtr device = newDevice(isas, threads, img.isa);
   const long version = long(rtcGetDeviceProperty(device.get(), RTC_DEVICE_PROPERTY_VERSION));
-  img.version = std::to_string(version / 10000) + "." + std::to_string(version / 100 % 100) + "." +
-                std::to_string(version % 100);
+  img.version =
+      std::to_string(version / 10000) + "." + std::to_string(version / 100 % 100) + "." + std::to_string(version % 100);
   // Backface culling compiled into Embree would silently drop hits of clockwise triangles.
   if (rtcGetDeviceProperty(device.get(), RTC_DEVICE_PROPERTY_BACKFACE_CULLING_ENABLED))
     throw Error("visibility: this Embree build culls back faces; the visibility oracle needs both windings");
@@ -153,6 +168,9 @@ EmbreeImage traceScene(const VisibilityScene& scene, const std::vector<std::stri
   const auto t1 = std::chrono::steady_clock::now();
 
   const int32_t w = scene.width;
+  // Rays start at z = -1, so a hit at window depth z has t = z + 1 (exact in float for z in [0, 1]
+  // up to one rounding).
+  const float clearT = float(1.0 + double(scene.clearDepth));
   auto castRows = [&](const tbb::blocked_range<int32_t>& rows) {
     for (int32_t y = rows.begin(); y != rows.end(); ++y)
       for (int32_t x = 0; x < w; ++x) {
@@ -162,13 +180,14 @@ EmbreeImage traceScene(const VisibilityScene& scene, const std::vector<std::stri
         ctx.draws = &draws;
         ctx.best = &best;
         ctx.px = x, ctx.py = y;
+        ctx.clearT = clearT;
         RTCRayHit rh{};
         rh.ray.org_x = float(x) + 0.5f;
         rh.ray.org_y = float(y) + 0.5f;
         rh.ray.org_z = -1.0f;
         rh.ray.dir_x = 0.0f, rh.ray.dir_y = 0.0f, rh.ray.dir_z = 1.0f;
         rh.ray.tnear = 0.0f;
-        rh.ray.tfar = std::numeric_limits<float>::infinity();
+        rh.ray.tfar = clearT;
         rh.ray.mask = 0xffffffffu;
         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rh.hit.primID = RTC_INVALID_GEOMETRY_ID;

@@ -1,7 +1,7 @@
 // The Embree half of the visibility oracle: one ray per pixel centre through the window-space
 // triangles of a VisibilityScene.
 //
-// Implements: an Embree 3 device pinned to one ISA and one build thread, one triangle geometry per
+// Implements: an Embree 3 device pinned to one ISA, one triangle geometry per
 // draw (culled triangles left out), rays from (x + 1/2, y + 1/2, -1) along +z cast with rtcIntersect1
 // in parallel over rows (oneTBB), and a filter function that makes the answer independent of BVH
 // traversal order: it keeps the hit with the smallest t, breaking exact ties the way the depth test

@@ -22,19 +22,22 @@
 #pragma once
 
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "raster/command_list.h"
 
 namespace tessera::verify {
 
+// The most the oracle's snapping (8 sub-pixel bits, round half to even per axis) moves a vertex, and
+// therefore any point of an edge: sqrt(2) / 512 px. edgeEpsilon must not be smaller.
+constexpr double kMaxSnapDisplacement = 0.0027621358640099515;
+
 struct VisibilityOptions {
-  int threads = 0;                    // rays and the oracle render; 0 = all hardware threads
-  double edgeEpsilon = 1.0 / 256.0;   // px; docs/visibility.md "Edge bound"
-  size_t maxListed = 20;              // first_unexplained entries kept
+  int threads = 0;                   // rays and the oracle render; 0 = all hardware threads
+  double edgeEpsilon = 1.0 / 256.0;  // px; docs/visibility.md "Edge bound"
+  size_t maxListed = 20;             // first_unexplained entries kept
   // Embree ISA, pinned so that Embree's own float arithmetic is the same on every machine of a kind.
   // Tried in order; the first that creates a device wins.
   std::vector<std::string> isas = {"avx2", "sse4.2"};
@@ -59,12 +62,12 @@ struct UnexplainedPixel {
 
 struct VisibilityResult {
   int32_t width = 0, height = 0;
-  uint64_t draws = 0, triangles = 0;     // in-scope draws; window-space triangles given to Embree
-  uint64_t primitivesClipped = 0;        // primitives that went through clipTriangle
+  uint64_t draws = 0, triangles = 0;  // in-scope draws; window-space triangles given to Embree
+  uint64_t primitivesClipped = 0;     // primitives that went through clipTriangle
   uint64_t pixels = 0, matching = 0;
   double exactMatchPercent = 0;
   uint64_t mismatches = 0;
-  uint64_t backgroundMismatches = 0;     // one side background, the other a triangle
+  uint64_t backgroundMismatches = 0;  // one side background, the other a triangle
   uint64_t explainedEdge = 0;
   uint64_t explainedDepthTie = 0;
   // Embree disagreed but the double-precision reference agrees with the oracle exactly (Embree's own
@@ -73,15 +76,15 @@ struct VisibilityResult {
   uint64_t unexplained = 0;
   std::vector<UnexplainedPixel> firstUnexplained;
   // How much of the bounds the explained pixels used (evidence that the bounds are not loose).
-  double maxEdgeDistanceUsed = 0;   // px, over edge-explained pixels
-  double maxDepthTieUsed = 0;       // |z_oracle_choice - z_nearest|, over depth-tie pixels
+  double maxEdgeDistanceUsed = 0;  // px, over edge-explained pixels
+  double maxDepthTieUsed = 0;      // |z_oracle_choice - z_nearest|, over depth-tie pixels
   // Depth attachment vs the reference plane at pixels whose ids match.
   uint64_t depthChecked = 0, depthOutOfTolerance = 0;
   double depthMaxAbsDiff = 0;
   double edgeEpsilon = 0;
   std::string embreeVersion, embreeIsa;
-  double buildMs = 0, castMs = 0;   // wall time of the Embree build and the ray cast (not deterministic)
-  IdImages embree;                  // the ray-cast images (depth = reference plane depth, float)
+  double buildMs = 0, castMs = 0;  // wall time of the Embree build and the ray cast (not deterministic)
+  IdImages embree;                 // the ray-cast images (depth = reference plane depth, float)
 };
 
 // Casts the frame and compares it with the CPU oracle's render of the same list.

@@ -153,8 +153,8 @@ class Replay {
     std::vector<VertexIn> in(n);
     std::vector<VertexOut> out(n);
     for (size_t i = 0; i < n; ++i) {
-      const uint32_t index = d.indexed ? readIndex(buffers_.at(indexBuffer_), indexType_, uint64_t(d.first) + i)
-                                       : uint32_t(d.first + i);
+      const uint32_t index =
+          d.indexed ? readIndex(buffers_.at(indexBuffer_), indexType_, uint64_t(d.first) + i) : uint32_t(d.first + i);
       fetchVertex(vb, layout_, index, in[i]);
     }
     std::memset(out.data(), 0, out.size() * sizeof(VertexOut));
@@ -203,8 +203,8 @@ class Replay {
       // Facing from the signed area in window space (GL 4.6 §14.6.1, eq. 14.8), unsnapped.
       const double area2 = (t.x[1] - t.x[0]) * (t.y[2] - t.y[0]) - (t.x[2] - t.x[0]) * (t.y[1] - t.y[0]);
       const bool front = (area2 > 0.0) == raster_.frontCcw;
-      t.culled = area2 == 0.0 || (raster_.cull == CullMode::Back && !front) ||
-                 (raster_.cull == CullMode::Front && front);
+      t.culled =
+          area2 == 0.0 || (raster_.cull == CullMode::Back && !front) || (raster_.cull == CullMode::Front && front);
       out_.triangles.push_back(t);
     }
   }

@@ -18,27 +18,27 @@ namespace tessera::verify {
 
 // One triangle in GL window space (pixels, y up), exactly as the unsnapped geometry puts it.
 struct WindowTriangle {
-  double x[3], y[3], z[3];  // z = window depth in [0, 1]
-  uint32_t draw = 0;        // index into VisibilityScene::draws
-  uint32_t primitiveId = 0; // gl_PrimitiveID: triangle index within its draw
-  uint32_t objectId = 0;    // flat[0] of the provoking (last) vertex: what "object_id" writes
+  double x[3], y[3], z[3];   // z = window depth in [0, 1]
+  uint32_t draw = 0;         // index into VisibilityScene::draws
+  uint32_t primitiveId = 0;  // gl_PrimitiveID: triangle index within its draw
+  uint32_t objectId = 0;     // flat[0] of the provoking (last) vertex: what "object_id" writes
   // Culled by the draw's face culling, or zero signed area: never the nearest hit, but still a
   // candidate near its edges, because snapping can flip a sliver's orientation.
   bool culled = false;
 };
 
 struct SceneDraw {
-  size_t command = 0;       // index of the Draw command
+  size_t command = 0;  // index of the Draw command
   CompareFunc depthFunc = CompareFunc::Less;
-  Rect clampRect;           // viewport ∩ scissor ∩ target: pixels the draw may touch
+  Rect clampRect;  // viewport ∩ scissor ∩ target: pixels the draw may touch
 };
 
 struct VisibilityScene {
-  RenderTarget target;      // the presented target
+  RenderTarget target;  // the presented target
   int32_t width = 0, height = 0;
   std::vector<SceneDraw> draws;
-  std::vector<WindowTriangle> triangles;  // submission order: draw, primitive, fan sub-triangle
-  std::array<uint32_t, 2> clearIds{0, 0}; // attachment 0 / 1 values where no triangle wins
+  std::vector<WindowTriangle> triangles;   // submission order: draw, primitive, fan sub-triangle
+  std::array<uint32_t, 2> clearIds{0, 0};  // attachment 0 / 1 values where no triangle wins
   float clearDepth = 1.0f;
   uint64_t primitivesClipped = 0;
 };

@@ -21,10 +21,20 @@ inline Vec4 mulMat4(const Vec4* u, int base, const Vec4& v) {
   return r;
 }
 
-// float -> uint32 for ids carried in float attributes / buffer texels. Values that are not an
-// exact non-negative integer below 2^32 (NaN included) map to 0xffffffff instead of UB.
+// float -> uint32 for ids carried in float attributes / buffer texels: truncation toward zero, as the
+// GLSL twins' uint(); values outside [0, 2^32) and NaN map to 0xffffffff instead of UB.
 inline uint32_t toId(float f) {
   return (f >= 0.0f && f < 4294967296.0f) ? uint32_t(f) : 0xffffffffu;
+}
+
+// floor(x + 1/2) as an index for buffer fetches; NaN, infinities and |x| >= 2^62 give -1, which every
+// fetch treats as out of range (never UB).
+inline int64_t toIndex(float x) {
+  const double v = double(x) + 0.5;
+  if (!(v > -4.6e18 && v < 4.6e18)) return -1;
+  int64_t i = int64_t(v);
+  if (double(i) > v) --i;  // floor
+  return i;
 }
 
 // Writes the same RGBA to every pixel of a quad's attachment.

@@ -37,7 +37,7 @@ class TexarrayBatch final : public Program {
       const float dsdx = s[1] - s[0], dtdx = t[1] - t[0], dsdy = s[2] - s[0], dtdy = t[2] - t[0];
       // The entry of each pixel; a quad normally lies in one triangle, so one entry for all four.
       float tae[4][4];
-      for (int p = 0; p < 4; ++p) fetchBuffer(ctx.units[0], int64_t(std::floor(double(quad.var[p][2]) + 0.5)), tae[p]);
+      for (int p = 0; p < 4; ++p) fetchBuffer(ctx.units[0], toIndex(quad.var[p][2]), tae[p]);
       const bool uniform = std::memcmp(tae[0], tae[1], sizeof tae[0]) == 0 &&
                            std::memcmp(tae[0], tae[2], sizeof tae[0]) == 0 &&
                            std::memcmp(tae[0], tae[3], sizeof tae[0]) == 0;

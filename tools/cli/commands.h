@@ -8,5 +8,7 @@ namespace tessera::cli {
 void addRenderCommands(CLI::App& app);  // scenes, render, replay, validate (cmd_render.cpp)
 void addDemoCommand(CLI::App& app);     // demo (cmd_demo.cpp)
 void addGoldenCommands(CLI::App& app);  // golden check / update (cmd_golden.cpp)
+void addVerifyCommands(CLI::App& app);  // crosscheck, visibility, compare, bench (cmd_verify.cpp)
+void addCityCommand(CLI::App& app);     // city (cmd_city.cpp)
 
 }  // namespace tessera::cli

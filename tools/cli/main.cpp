@@ -14,6 +14,8 @@ int main(int argc, char** argv) {
   tessera::cli::addRenderCommands(app);
   tessera::cli::addDemoCommand(app);
   tessera::cli::addGoldenCommands(app);
+  tessera::cli::addVerifyCommands(app);
+  tessera::cli::addCityCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

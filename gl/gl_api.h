@@ -1,0 +1,9 @@
+// The one include for GL in the backend: GL 4.5 core prototypes straight from libOpenGL (libglvnd
+// exports every core entry point, DSA included), so no loader is involved (toolchain-probe §2).
+// Internal to gl/: public headers never include it.
+#pragma once
+
+#ifndef GL_GLEXT_PROTOTYPES
+#define GL_GLEXT_PROTOTYPES
+#endif
+#include <GL/glcorearb.h>

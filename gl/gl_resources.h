@@ -1,0 +1,51 @@
+// GL objects of one frame by command-list id: textures, buffers and samplers, created, zeroed and
+// uploaded with DSA (GL 4.5 §6, §8), and deleted at the end of the frame.
+//
+// Pinned to the oracle (docs/gl-backend.md): storage is immutable (glTextureStorage*,
+// glNamedBufferStorage) and starts zeroed like the oracle's, because GL leaves fresh storage
+// undefined; every level is uploaded by the list (never glGenerateMipmap, spec-choices T13);
+// GL_TEXTURE_MAX_LEVEL = levels - 1; a texture's own sampling parameters stay GL's defaults, which
+// equal SamplerState{} (the oracle's rule for a unit without a sampler).
+// Internal to gl/.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "gl/gl_api.h"
+#include "raster/command_list.h"
+
+namespace tessera::gl {
+
+struct GlTexture {
+  GLuint name = 0;
+  GLenum target = GL_NONE;
+  TextureDesc desc;
+};
+
+class FrameResources {
+ public:
+  void createTexture(ResourceId id, const TextureDesc& desc);
+  void uploadTexture(const UploadTexture& u, std::span<const uint8_t> texels);
+  void createBuffer(ResourceId id, uint64_t size);
+  void uploadBuffer(const UploadBuffer& u, std::span<const uint8_t> bytes);
+  void createSampler(ResourceId id, const SamplerState& s);
+
+  // nullptr / 0 for ids that name no such object.
+  const GlTexture* texture(ResourceId id) const;
+  GLuint buffer(ResourceId id) const;
+  GLuint sampler(ResourceId id) const;
+
+  // Deletes every object except the textures listed in `keep` (the presented images).
+  void releaseExcept(std::span<const ResourceId> keep);
+  void releaseAll() { releaseExcept({}); }
+  // GL names currently held (for leak tests).
+  size_t liveObjects() const;
+
+ private:
+  void grow(ResourceId id);
+  std::vector<GlTexture> textures_;  // indexed by id
+  std::vector<GLuint> buffers_, samplers_;
+};
+
+}  // namespace tessera::gl

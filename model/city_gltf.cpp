@@ -1,0 +1,206 @@
+// Writing a generated city as glTF 2.0: DIR/<name>.gltf (JSON), DIR/<name>.bin (positions, then
+// texcoords, then uint32 indices, one bufferView each) and DIR/textures/tNNNNN.png|jpg.
+// Textures are rendered and encoded in parallel (TBB), each into its own file, so the bytes do not
+// depend on the schedule. Every file is written to <path>.tmp-<pid> and renamed; the .gltf comes
+// last, so its presence means the rest is complete.
+#include <OpenImageIO/imageio.h>
+#include <tbb/parallel_for.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+
+#include <fmt/format.h>
+
+#include "model/city_scene.h"
+#include "raster/command_list.h"
+#include "tools/scenes/builder.h"
+
+namespace tessera::model::city {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string tempName(const std::string& path) { return path + ".tmp-" + std::to_string(::getpid()); }
+
+void commit(const std::string& tmp, const std::string& path) {
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw Error(path + ": cannot rename the finished temporary file into place");
+  }
+}
+
+void writeBytes(const std::string& path, const void* data, size_t size) {
+  const std::string tmp = tempName(path);
+  {
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    if (!f) throw Error(path + ": cannot open for writing");
+    f.write(static_cast<const char*>(data), std::streamsize(size));
+    f.flush();
+    if (!f) {
+      f.close();
+      std::remove(tmp.c_str());
+      throw Error(path + ": write failed");
+    }
+  }
+  commit(tmp, path);
+}
+
+void writeImageFile(const std::string& path, const TexSpec& t, const std::vector<uint8_t>& px, bool jpg) {
+  const int ch = t.rgba() ? 4 : 3;
+  OIIO::ImageSpec spec(int(t.width), int(t.height), ch, OIIO::TypeDesc::UINT8);
+  if (ch == 4) {
+    spec.alpha_channel = 3;
+    spec.attribute("oiio:UnassociatedAlpha", 1);  // store alpha as given, colour not premultiplied
+  }
+  if (jpg) spec.attribute("Compression", "jpeg:90");
+  else spec.attribute("png:compressionLevel", 1);
+  const std::string tmp = tempName(path);
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) throw Error(path + ": cannot create an image writer: " + OIIO::geterror());
+  if (!out->open(tmp, spec) || !out->write_image(OIIO::TypeDesc::UINT8, px.data()) || !out->close()) {
+    const std::string e = out->geterror();
+    std::remove(tmp.c_str());
+    throw Error(path + ": write failed: " + e);
+  }
+  commit(tmp, path);
+}
+
+uint64_t fileSize(const std::string& path) {
+  std::error_code ec;
+  const auto n = fs::file_size(path, ec);
+  return ec ? 0 : uint64_t(n);
+}
+
+template <class T>
+void append(std::vector<uint8_t>& bin, const std::vector<T>& v) {
+  const size_t at = bin.size();
+  bin.resize(at + v.size() * sizeof(T));
+  if (!v.empty()) std::memcpy(bin.data() + at, v.data(), v.size() * sizeof(T));
+}
+
+}  // namespace
+
+void writeScene(const Scene& scene, const CityOptions& o, CitySummary& s) {
+  const std::string dir = o.outDir;
+  std::error_code ec;
+  fs::create_directories(dir + "/textures", ec);
+  if (ec) throw Error(dir + "/textures: cannot create the output directory: " + ec.message());
+
+  // Textures.
+  const bool jpg = o.format == CityImageFormat::Jpg;
+  const size_t nt = scene.textures.size();
+  std::vector<std::string> names(nt);
+  std::vector<uint64_t> sizes(nt);
+  const int digits = std::max<int>(5, int(std::to_string(nt).size()));
+  for (size_t i = 0; i < nt; ++i)
+    names[i] = fmt::format("textures/t{:0{}}.{}", i, digits, jpg && !scene.textures[i].rgba() ? "jpg" : "png");
+  std::atomic<size_t> done{0};
+  std::mutex printMutex;
+  const bool progress = o.progress && nt >= 200;
+  tbb::parallel_for(size_t(0), nt, [&](size_t i) {
+    const TexSpec& t = scene.textures[i];
+    const std::string path = dir + "/" + names[i];
+    writeImageFile(path, t, renderTexture(t), names[i].ends_with(".jpg"));
+    sizes[i] = fileSize(path);
+    const size_t d = ++done;
+    if (progress && (d % std::max<size_t>(nt / 20, 1) == 0 || d == nt)) {
+      std::lock_guard<std::mutex> lock(printMutex);
+      std::fprintf(stderr, "city: %s textures %zu/%zu\n", scene.name.c_str(), d, nt);
+    }
+  });
+  for (size_t i = 0; i < nt; ++i) {
+    const TexSpec& t = scene.textures[i];
+    s.texelCount += uint64_t(t.width) * t.height;
+    s.textureBytesRaw += uint64_t(t.width) * t.height * (t.rgba() ? 4 : 3);
+    s.rgbaTextures += t.rgba();
+    s.bytesOnDisk += sizes[i];
+    s.files.push_back(names[i]);
+  }
+  s.textures = nt;
+
+  // Geometry: three bufferViews (positions, texcoords, indices) in one .bin.
+  std::vector<uint8_t> pos, uv, idx;
+  nlohmann::json accessors = nlohmann::json::array(), meshes = nlohmann::json::array(), nodes = nlohmann::json::array();
+  for (const Node& n : scene.nodes) {
+    nlohmann::json jn = {{"name", n.name}};
+    if (n.translation != std::array<double, 3>{0, 0, 0}) jn["translation"] = n.translation;
+    if (n.yaw != 0.0)  // about +Y: (0, sin(yaw/2), 0, cos(yaw/2)), stored as float like every glTF number
+      jn["rotation"] = {0.0, double(float(scenes::detSin(n.yaw / 2))), 0.0, double(float(scenes::detCos(n.yaw / 2)))};
+    if (!n.children.empty()) jn["children"] = n.children;
+    if (!n.primitives.empty()) {
+      nlohmann::json prims = nlohmann::json::array();
+      for (const Primitive& p : n.primitives) {
+        Float3 lo = p.positions.front(), hi = p.positions.front();
+        for (const Float3& v : p.positions)
+          lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)},
+          hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
+        const size_t a = accessors.size();
+        accessors.push_back({{"bufferView", 0}, {"byteOffset", pos.size()}, {"componentType", 5126}, {"count", p.positions.size()},
+                             {"type", "VEC3"}, {"min", {lo.x, lo.y, lo.z}}, {"max", {hi.x, hi.y, hi.z}}});
+        accessors.push_back({{"bufferView", 1}, {"byteOffset", uv.size()}, {"componentType", 5126}, {"count", p.texcoords.size()},
+                             {"type", "VEC2"}});
+        accessors.push_back({{"bufferView", 2}, {"byteOffset", idx.size()}, {"componentType", 5125}, {"count", p.indices.size()},
+                             {"type", "SCALAR"}});
+        append(pos, p.positions), append(uv, p.texcoords), append(idx, p.indices);
+        prims.push_back({{"attributes", {{"POSITION", a}, {"TEXCOORD_0", a + 1}}}, {"indices", a + 2}, {"material", p.material}, {"mode", 4}});
+        s.triangles += p.indices.size() / 3;
+        s.vertices += p.positions.size();
+        ++s.primitives;
+      }
+      jn["mesh"] = meshes.size();
+      meshes.push_back({{"name", n.name}, {"primitives", prims}});
+    }
+    nodes.push_back(jn);
+  }
+  nlohmann::json materials = nlohmann::json::array(), textures = nlohmann::json::array(), images = nlohmann::json::array();
+  for (size_t i = 0; i < nt; ++i) {
+    const TexSpec& t = scene.textures[i];
+    nlohmann::json m = {{"name", fmt::format("m{}", i)},
+                        {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", i}}}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}}};
+    if (t.kind == TexKind::Fence || t.kind == TexKind::Tree) m["alphaMode"] = "MASK", m["alphaCutoff"] = 0.5, m["doubleSided"] = true;
+    if (t.kind == TexKind::Glass) m["alphaMode"] = "BLEND", m["doubleSided"] = true;
+    materials.push_back(m);
+    textures.push_back({{"source", i}, {"sampler", 0}});
+    images.push_back({{"uri", names[i]}});
+  }
+  const std::string binName = scene.name + ".bin";
+  const size_t binSize = pos.size() + uv.size() + idx.size();
+  nlohmann::json root = {
+      {"asset", {{"version", "2.0"},
+                 {"generator", fmt::format("tessera city --preset {} --buildings {} --seed {} --texture-size {} --format {}",
+                                           scene.name, scene.buildings, o.seed, o.textureSize, jpg ? "jpg" : "png")}}},
+      {"scene", 0},
+      {"scenes", {{{"name", scene.name}, {"nodes", scene.roots}}}},
+      {"nodes", nodes},
+      {"meshes", meshes},
+      {"accessors", accessors},
+      {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", pos.size()}, {"byteStride", 12}, {"target", 34962}},
+                       {{"buffer", 0}, {"byteOffset", pos.size()}, {"byteLength", uv.size()}, {"byteStride", 8}, {"target", 34962}},
+                       {{"buffer", 0}, {"byteOffset", pos.size() + uv.size()}, {"byteLength", idx.size()}, {"target", 34963}}}},
+      {"buffers", {{{"uri", binName}, {"byteLength", binSize}}}},
+      {"materials", materials},
+      {"textures", textures},
+      {"images", images},
+      {"samplers", {{{"magFilter", 9729}, {"minFilter", 9987}, {"wrapS", 10497}, {"wrapT", 10497}}}}};
+  std::vector<uint8_t> bin;
+  bin.reserve(binSize);
+  bin.insert(bin.end(), pos.begin(), pos.end());
+  bin.insert(bin.end(), uv.begin(), uv.end());
+  bin.insert(bin.end(), idx.begin(), idx.end());
+  writeBytes(dir + "/" + binName, bin.data(), bin.size());
+  const std::string json = root.dump() + "\n";
+  const std::string gltf = dir + "/" + scene.name + ".gltf";
+  writeBytes(gltf, json.data(), json.size());
+  s.files.push_back(binName);
+  s.files.push_back(scene.name + ".gltf");
+  s.bytesOnDisk += bin.size() + json.size();
+  s.gltf = gltf;
+}
+
+}  // namespace tessera::model::city

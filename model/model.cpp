@@ -1,0 +1,235 @@
+// loadModel()'s dispatch, and lazy texture access through OpenImageIO.
+#include "model/model.h"
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "model/loaders.h"
+#include "raster/command_list.h"
+
+namespace tessera::model {
+
+namespace fs = std::filesystem;
+
+void Bounds::add(const Float3& p) {
+  min = {std::min(min.x, p.x), std::min(min.y, p.y), std::min(min.z, p.z)};
+  max = {std::max(max.x, p.x), std::max(max.y, p.y), std::max(max.z, p.z)};
+}
+
+size_t Model::triangleCount() const {
+  size_t n = 0;
+  for (const Mesh& m : meshes) n += m.triangleCount();
+  return n;
+}
+
+namespace detail {
+
+std::string uriDecode(std::string_view uri) {
+  if (uri.starts_with("file://")) uri.remove_prefix(7);
+  std::string out;
+  out.reserve(uri.size());
+  auto hex = [](char c) -> int {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+  };
+  for (size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size() && hex(uri[i + 1]) >= 0 && hex(uri[i + 2]) >= 0) {
+      out += char(hex(uri[i + 1]) * 16 + hex(uri[i + 2]));
+      i += 2;
+    } else {
+      out += uri[i];
+    }
+  }
+  return out;
+}
+
+std::string resolveBeside(const std::string& modelPath, const std::string& relative) {
+  std::string r = relative;
+  std::replace(r.begin(), r.end(), '\\', '/');  // Windows exporters
+  const fs::path p(r);
+  if (p.is_absolute()) return p.lexically_normal().string();
+  return (fs::path(modelPath).parent_path() / p).lexically_normal().string();
+}
+
+void requireTextureFile(const std::string& modelPath, const std::string& what, const std::string& uri,
+                        const std::string& resolved) {
+  std::error_code ec;
+  if (fs::is_regular_file(resolved, ec)) return;
+  throw Error(modelPath + ": " + what + ": texture file '" + resolved + "' (written as '" + uri + "') does not exist");
+}
+
+}  // namespace detail
+
+Model loadModel(const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw Error(path + ": no such model file");
+  char magic[4] = {};
+  {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) throw Error(path + ": cannot open for reading");
+    f.read(magic, 4);
+  }
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  Model m;
+  if (std::memcmp(magic, "glTF", 4) == 0 || ext == ".gltf" || ext == ".glb") m = detail::loadGltf(path);
+  else if (ext == ".obj") m = detail::loadObj(path);
+  else m = detail::loadAssimp(path);
+  m.source = path;
+  for (const Mesh& mesh : m.meshes)
+    for (const Float3& p : mesh.positions) m.bounds.add(p);
+  return m;
+}
+
+namespace {
+
+// The OIIO format to try for encoded bytes: by signature, then by MIME type, then by extension.
+std::string formatHint(const TextureRef& t, const uint8_t* head, size_t n) {
+  auto is = [&](const char* sig, size_t len) { return n >= len && std::memcmp(head, sig, len) == 0; };
+  if (is("\x89PNG", 4)) return "png";
+  if (is("\xff\xd8\xff", 3)) return "jpg";
+  if (is("DDS ", 4)) return "dds";
+  if (is("\x01\xda", 2)) return "sgi";
+  if (is("BM", 2)) return "bmp";
+  if (is("GIF8", 4)) return "gif";
+  if (is("RIFF", 4)) return "webp";
+  if (t.mimeType == "image/png") return "png";
+  if (t.mimeType == "image/jpeg") return "jpg";
+  std::string ext = fs::path(t.path.empty() ? t.uri : t.path).extension().string();
+  if (!ext.empty()) return ext.substr(1);
+  return "tga";  // TGA has no signature at the start
+}
+
+std::string describe(const Model& m, size_t index) {
+  const TextureRef& t = m.textures[index];
+  std::string s = m.source + ": texture " + std::to_string(index) + " '" + t.name + "'";
+  if (t.source == TextureRef::Source::File) s += " (" + t.path + ")";
+  if (t.source == TextureRef::Source::FileRange)
+    s += " (bytes " + std::to_string(t.offset) + "+" + std::to_string(t.size) + " of " + t.path + ")";
+  return s;
+}
+
+std::vector<uint8_t> readRange(const std::string& what, const std::string& path, uint64_t offset, uint64_t size) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw Error(what + ": cannot open " + path);
+  f.seekg(std::streamoff(offset));
+  std::vector<uint8_t> bytes(size);
+  if (!f.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(size)))
+    throw Error(what + ": the file ends before the image's byte range");
+  return bytes;
+}
+
+// An open OIIO reader on the texture's bytes. Memory and file ranges go through an IOMemReader when
+// the format's plugin supports IOProxy; otherwise through a temporary file (removed on destruction).
+class OpenTexture {
+ public:
+  OpenTexture(const Model& m, size_t index) : what_(describe(m, index)) {
+    if (index >= m.textures.size())
+      throw Error(m.source + ": texture " + std::to_string(index) + " does not exist (" + std::to_string(m.textures.size()) + " textures)");
+    const TextureRef& t = m.textures[index];
+    config_.attribute("oiio:UnassociatedAlpha", 1);  // alpha as stored, colour not premultiplied
+    if (t.source == TextureRef::Source::File) {
+      in_ = OIIO::ImageInput::open(t.path, &config_);
+      if (!in_) throw Error(what_ + ": cannot read image: " + OIIO::geterror());
+      return;
+    }
+    if (t.source == TextureRef::Source::FileRange) {
+      owned_ = readRange(what_, t.path, t.offset, t.size);
+      data_ = owned_.data(), size_ = owned_.size();
+    } else {
+      if (!t.bytes) throw Error(what_ + ": no bytes");
+      data_ = t.bytes->data(), size_ = t.bytes->size();
+    }
+    const std::string ext = formatHint(t, data_, size_);
+    auto probe = OIIO::ImageInput::create("x." + ext);
+    if (probe && probe->supports("ioproxy")) {
+      proxy_ = std::make_unique<OIIO::Filesystem::IOMemReader>(data_, size_);
+      in_ = OIIO::ImageInput::open("memory." + ext, &config_, proxy_.get());
+    } else {
+      static std::atomic<uint64_t> counter{0};
+      temp_ = (fs::temp_directory_path() / ("tessera-texture-" + std::to_string(::getpid()) + "-" +
+                                            std::to_string(counter++) + "." + ext)).string();
+      std::ofstream f(temp_, std::ios::binary);
+      f.write(reinterpret_cast<const char*>(data_), std::streamsize(size_));
+      f.close();
+      if (!f) throw Error(what_ + ": cannot write the temporary file " + temp_);
+      in_ = OIIO::ImageInput::open(temp_, &config_);
+    }
+    if (!in_) throw Error(what_ + ": cannot read image (" + ext + "): " + OIIO::geterror());
+  }
+  ~OpenTexture() {
+    if (in_) in_->close();
+    if (!temp_.empty()) std::remove(temp_.c_str());
+  }
+  OIIO::ImageInput& in() { return *in_; }
+  const std::string& what() const { return what_; }
+
+ private:
+  std::string what_;
+  OIIO::ImageSpec config_;
+  std::vector<uint8_t> owned_;
+  const uint8_t* data_ = nullptr;
+  size_t size_ = 0;
+  std::unique_ptr<OIIO::Filesystem::IOMemReader> proxy_;
+  std::string temp_;
+  std::unique_ptr<OIIO::ImageInput> in_;
+};
+
+}  // namespace
+
+Image loadTexture(const Model& model, size_t index) {
+  if (index < model.textures.size() && model.textures[index].rawRGBA) {
+    const TextureRef& t = model.textures[index];
+    Image img{t.rawWidth, t.rawHeight, {}, 4, false};
+    if (!t.bytes || t.bytes->size() != size_t(t.rawWidth) * t.rawHeight * 4)
+      throw Error(describe(model, index) + ": raw texel data has the wrong size");
+    img.rgba = *t.bytes;
+    for (size_t i = 3; i < img.rgba.size(); i += 4) img.usesAlpha = img.usesAlpha || img.rgba[i] != 255;
+    return img;
+  }
+  OpenTexture ot(model, index);
+  const OIIO::ImageSpec spec = ot.in().spec();
+  const int nc = spec.nchannels;
+  if (spec.width <= 0 || spec.height <= 0 || nc <= 0 || spec.width > 65536 || spec.height > 65536)
+    throw Error(ot.what() + ": unsupported image size " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + "x" +
+                std::to_string(nc));
+  Image img;
+  img.width = uint32_t(spec.width), img.height = uint32_t(spec.height), img.fileChannels = nc;
+  const size_t texels = size_t(img.width) * img.height;
+  std::vector<uint8_t> raw(texels * size_t(nc));
+  if (!ot.in().read_image(0, 0, 0, nc, OIIO::TypeDesc::UINT8, raw.data()))
+    throw Error(ot.what() + ": cannot decode image: " + ot.in().geterror());
+  img.rgba.resize(texels * 4);
+  const int alpha = spec.alpha_channel >= 0 ? spec.alpha_channel : (nc == 2 ? 1 : nc >= 4 ? 3 : -1);
+  for (size_t i = 0; i < texels; ++i) {
+    const uint8_t* s = &raw[i * size_t(nc)];
+    uint8_t* d = &img.rgba[i * 4];
+    if (nc <= 2) {
+      d[0] = d[1] = d[2] = s[0];
+    } else {
+      d[0] = s[0], d[1] = s[1], d[2] = s[2];
+    }
+    d[3] = alpha >= 0 ? s[alpha] : 255;
+    img.usesAlpha = img.usesAlpha || d[3] != 255;
+  }
+  return img;
+}
+
+TextureInfo probeTexture(const Model& model, size_t index) {
+  if (index < model.textures.size() && model.textures[index].rawRGBA)
+    return {model.textures[index].rawWidth, model.textures[index].rawHeight, 4, "raw"};
+  OpenTexture ot(model, index);
+  const OIIO::ImageSpec& spec = ot.in().spec();
+  return {uint32_t(std::max(spec.width, 0)), uint32_t(std::max(spec.height, 0)), spec.nchannels, ot.in().format_name()};
+}
+
+}  // namespace tessera::model

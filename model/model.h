@@ -1,0 +1,132 @@
+// Textured scenes read from files: the input of the texture atlas tree (issue 4).
+//
+// Implements: an in-memory textured triangle scene (Model) read from glTF 2.0 (.gltf / .glb, embedded
+// or external images), OBJ + MTL, and everything Assimp reads (COLLADA .dae, AC3D .ac, glTF 1.0, ...);
+// lazy texture access: a Model only says where each image's bytes are, and loadTexture() /
+// probeTexture() decode or measure one image at a time through OpenImageIO, so a consumer that works
+// out of core never holds more than the textures it asked for.
+// Does not implement: rendering, atlas building, skinning, morph targets, cameras, lights, or any
+// material beyond the base colour (texture x factor, alpha mode). docs/model-import.md lists what each
+// loader keeps and drops.
+//
+// Conventions (every loader produces them)
+// - Positions are in the file's units with every node transform applied: the hierarchy is composed
+//   in double and the result stored as float. glTF is Y-up; other formats keep their own axes.
+// - Texcoords are stored as float exactly as the file gives them after the texture transform (glTF
+//   KHR_texture_transform, MTL -o/-s): never clamped or wrapped, so repeat counts in the thousands
+//   survive. v follows glTF: v = 0 is the first (top) row of the image file. Loaders for formats
+//   whose v points up (OBJ, Assimp) store 1 - v.
+// - Image rows are in file order (top row first). With the v convention above, uploading them to GL
+//   as-is (first file row = GL row 0, t = 0) maps every texcoord to the texel the file meant.
+// - Triangles are uint32 index triples, counter-clockwise front faces (a transform with a negative
+//   determinant flips the winding back). Strips and fans are converted; points and lines are dropped
+//   with a note.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace tessera::model {
+
+struct Float2 {
+  float u = 0.0f, v = 0.0f;
+};
+struct Float3 {
+  float x = 0.0f, y = 0.0f, z = 0.0f;
+};
+
+struct Bounds {
+  Float3 min{1e30f, 1e30f, 1e30f}, max{-1e30f, -1e30f, -1e30f};
+  bool empty() const { return min.x > max.x; }
+  void add(const Float3& p);
+};
+
+// How the base colour's alpha is used (glTF 2.0 material.alphaMode).
+enum class AlphaMode : uint8_t { Opaque, Mask, Blend };
+// Texture address modes (glTF sampler wrapS / wrapT).
+enum class Wrap : uint8_t { Repeat, ClampToEdge, MirroredRepeat };
+
+struct Material {
+  std::string name;
+  int32_t baseColorTexture = -1;  // index into Model::textures, -1 = untextured
+  std::array<float, 4> baseColorFactor{1.0f, 1.0f, 1.0f, 1.0f};  // multiplies the texture (linear)
+  AlphaMode alphaMode = AlphaMode::Opaque;
+  float alphaCutoff = 0.5f;  // Mask only
+  bool doubleSided = false;
+  Wrap wrapS = Wrap::Repeat, wrapT = Wrap::Repeat;
+};
+
+// One material's triangles. texcoords and normals are either empty or one per position.
+struct Mesh {
+  std::string name;
+  uint32_t material = 0;  // index into Model::materials (always valid)
+  std::vector<Float3> positions;
+  std::vector<Float2> texcoords;  // the set the material's texture uses (TEXCOORD_n / UV channel n)
+  std::vector<Float3> normals;
+  std::vector<uint32_t> indices;  // 3 per triangle
+  size_t triangleCount() const { return indices.size() / 3; }
+};
+
+// Where one image's encoded bytes are. Nothing is decoded until loadTexture().
+struct TextureRef {
+  enum class Source : uint8_t {
+    File,       // the whole file `path` is the image (PNG, JPEG, TGA, SGI, DDS, ...)
+    FileRange,  // bytes [offset, offset + size) of `path` (an image inside a .glb or an external .bin)
+    Memory,     // `bytes` (a data: URI, or an image Assimp embedded); `rawRGBA`: bytes are RGBA8 texels
+  };
+  Source source = Source::File;
+  std::string name;      // the image's name, or its file name
+  std::string uri;       // as the model file wrote it (for messages); empty for embedded images
+  std::string path;      // File / FileRange: the file to read
+  uint64_t offset = 0, size = 0;
+  std::string mimeType;  // "image/png", "image/jpeg", ... when the model says; else guessed from bytes
+  std::shared_ptr<const std::vector<uint8_t>> bytes;  // Memory only
+  bool rawRGBA = false;                                // Memory only: bytes are width x height RGBA8
+  uint32_t rawWidth = 0, rawHeight = 0;
+};
+
+struct Model {
+  std::vector<Material> materials;
+  std::vector<Mesh> meshes;
+  std::vector<TextureRef> textures;  // one per distinct image
+  Bounds bounds;                     // of every position of every mesh
+  std::string source;                // the file it was read from
+  std::string loader;                // "gltf", "obj" or "assimp:<format>"
+  std::vector<std::string> notes;    // what was dropped or assumed (points/lines, unsupported maps, ...)
+
+  size_t triangleCount() const;
+};
+
+// A decoded texture: RGBA8, rows in file order (top row first), tightly packed.
+struct Image {
+  uint32_t width = 0, height = 0;
+  std::vector<uint8_t> rgba;
+  int fileChannels = 0;   // channels the file stores (1 grey, 2 grey+alpha, 3 RGB, 4 RGBA)
+  bool usesAlpha = false;  // some texel has alpha < 255
+};
+
+struct TextureInfo {
+  uint32_t width = 0, height = 0;
+  int channels = 0;
+  std::string format;  // OIIO's format name: "png", "jpeg", "targa", "sgi", "dds", ...
+};
+
+// Reads a model file. The loader is chosen by content first (a .glb / glTF 1.0 / glTF 2.0 header),
+// then by extension: .gltf / .glb -> tinygltf (glTF 1.0 goes to Assimp), .obj -> tinyobjloader,
+// anything else -> Assimp. Image files are checked to exist but not read.
+// Throws Error naming the file and what is wrong: the JSON pointer for malformed glTF
+// ("/accessors/3/bufferView: ..."), the model and the missing path for a missing texture.
+Model loadModel(const std::string& path);
+
+// Decodes texture `index` of `model` to RGBA8: grey is replicated, a missing alpha becomes 255,
+// 16-bit channels are rounded to 8 bits, alpha is read unassociated (as stored).
+// Throws Error naming the model, the texture index and its uri on failure.
+Image loadTexture(const Model& model, size_t index);
+
+// The size and channel count of texture `index`, read from the image header only (OIIO's spec).
+TextureInfo probeTexture(const Model& model, size_t index);
+
+}  // namespace tessera::model

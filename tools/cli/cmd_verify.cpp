@@ -1,0 +1,180 @@
+// `tessera crosscheck | visibility | compare | bench crosscheck`: the oracle checked against GL,
+// against Embree, and images against each other.
+#include <chrono>
+#include <cstdio>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "gl/gl_backend.h"
+#include "raster/cpu_backend.h"
+#include "raster/serialize.h"
+#include "tools/cli/commands.h"
+#include "tools/cli/frame_job.h"
+#include "tools/scenes/scenes.h"
+#include "verify/compare_report.h"
+#include "verify/crosscheck.h"
+#include "verify/crosscheck_report.h"
+#include "verify/image_compare.h"
+#include "verify/visibility.h"
+
+namespace tessera::cli {
+
+namespace {
+
+// A scene name or a .tframe path.
+CommandList loadFrame(const std::string& what, const std::string& size) {
+  if (scenes::find(what)) {
+    const scenes::SceneInfo* s = scenes::find(what);
+    int w = s->width, h = s->height;
+    if (!size.empty()) std::tie(w, h) = parseSize(size, "--size");
+    return scenes::build(what, w, h);
+  }
+  if (what.ends_with(".tframe")) return readFrame(what);
+  return scenes::build(what, 1, 1);  // throws "unknown scene ... (known: ...)"
+}
+
+struct CrossArgs {
+  std::string frame, size, report, backends = "cpu,gl";
+  int threads = 0;
+  bool strict = false, noBisect = false;
+};
+
+void runCrosscheck(const CrossArgs& a) {
+  const CommandList list = loadFrame(a.frame, a.size);
+  verify::CrosscheckOptions o;
+  o.threads = a.threads;
+  o.bisect = !a.noBisect;
+  std::unique_ptr<gl::GlBackend> glb;
+  if (a.backends == "cpu,cpu") {
+    o.selfCheck = true;
+  } else if (a.backends == "cpu,gl") {
+    gl::GlOptions go;
+    go.strict = a.strict;
+    if (a.threads > 0) go.lpThreads = a.threads;
+    glb = gl::GlBackend::create(go);
+  } else {
+    throw Error("--backends '" + a.backends + "': expected cpu,gl (oracle vs GL) or cpu,cpu (oracle self-check)");
+  }
+  const verify::CrosscheckResult r = verify::crosscheck(list, a.frame, o, glb.get());
+  if (!a.report.empty()) verify::writeCrosscheckReport(r, a.report);
+  std::printf("%s\n", r.json.dump(2).c_str());
+  if (!r.passed) throw CLI::RuntimeError(1);
+}
+
+struct BenchArgs {
+  std::string scene, size;
+  int threads = 1, repeat = 5;
+};
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+void runBench(const BenchArgs& a) {
+  const CommandList list = loadFrame(a.scene, a.size);
+  gl::GlOptions go;
+  go.lpThreads = a.threads;
+  auto glb = gl::GlBackend::create(go);
+  std::vector<double> oracle, llvmpipe;
+  // One warm-up run each (GL compiles its shaders on first use), then `repeat` timed runs.
+  for (int i = 0; i <= a.repeat; ++i) {
+    CpuBackend b(RenderOptions{a.threads, false});
+    const auto t0 = std::chrono::steady_clock::now();
+    b.execute(list, a.scene);
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    glb->execute(list, a.scene);
+    if (i == 0) continue;
+    oracle.push_back(ms);
+    llvmpipe.push_back(glb->lastExecuteMs());
+  }
+  const double mo = median(oracle), ml = median(llvmpipe);
+  const nlohmann::json j = {{"scene", a.scene},
+                            {"threads", a.threads},
+                            {"repeat", a.repeat},
+                            {"oracle_ms", mo},
+                            {"llvmpipe_ms", ml},
+                            {"ratio", mo > 0 ? ml / mo : 0.0},
+                            {"ratio_meaning", "llvmpipe time / oracle time: above 1 means the oracle is faster"},
+                            {"oracle_runs_ms", oracle},
+                            {"llvmpipe_runs_ms", llvmpipe},
+                            {"gl_info", glb->info().toJson()}};
+  std::printf("%s\n", j.dump(2).c_str());
+}
+
+}  // namespace
+
+void addVerifyCommands(CLI::App& app) {
+  auto ca = std::make_shared<CrossArgs>();
+  auto* cross = app.add_subcommand(
+      "crosscheck",
+      "Render a frame on the oracle (with per-pixel provenance) and on OpenGL (headless EGL; Mesa llvmpipe here),\n"
+      "judge every GL pixel against the interval the GL spec allows, check GL issued exactly the counted calls,\n"
+      "and bisect to the first diverging draw on failure. Prints JSON; exit 1 if any pixel is unexplained.");
+  cross->add_option("frame", ca->frame, "Scene name or .tframe file")->required();
+  cross->add_option("--backends", ca->backends, "cpu,gl (default) or cpu,cpu (oracle self-check)")->capture_default_str();
+  cross->add_option("--report", ca->report, "Write report.json, PNGs and index.html (with a pixel inspector) here");
+  cross->add_option("--size", ca->size, "Target size WxH for scenes");
+  cross->add_option("--threads", ca->threads, "Oracle threads, and LP_NUM_THREADS for llvmpipe when > 0")
+      ->check(CLI::Range(0, 1024));
+  cross->add_flag("--strict", ca->strict, "Switch off llvmpipe fast paths that do not change GL semantics");
+  cross->add_flag("--no-bisect", ca->noBisect, "Do not bisect to the first diverging draw on failure");
+  cross->callback([ca] { runCrosscheck(*ca); });
+
+  auto va = std::make_shared<CrossArgs>();
+  auto* vis = app.add_subcommand(
+      "visibility",
+      "Ray-cast every pixel centre with Embree against the frame's post-transform triangles and compare the\n"
+      "object / primitive ids with the oracle's R32UI id targets. Prints JSON; exit 1 on any unexplained mismatch.");
+  vis->add_option("frame", va->frame, "Scene name (e.g. city_ids) or .tframe file whose final target holds id images")
+      ->required();
+  vis->add_option("--size", va->size, "Target size WxH for scenes");
+  vis->add_option("--threads", va->threads, "Threads (0 = all)")->check(CLI::Range(0, 1024));
+  vis->callback([va] {
+    verify::VisibilityOptions o;
+    o.threads = va->threads;
+    const verify::VisibilityResult r = verify::castVisibility(loadFrame(va->frame, va->size), o);
+    std::printf("%s\n", verify::visibilityToJson(r, true).dump(2).c_str());
+    if (r.unexplained) throw CLI::RuntimeError(1);
+  });
+
+  struct CompareArgs {
+    std::string a, b, report;
+    verify::CompareOptions o;
+    double warn = -1;
+  };
+  auto cmp = std::make_shared<CompareArgs>();
+  auto* compare = app.add_subcommand(
+      "compare",
+      "Compare two images (PNG, EXR, ...) like idiff: exit 0 pass, 1 warn, 2 fail, 3 size/format mismatch, 4 I/O error.\n"
+      "Thresholds are in LSBs for 8-bit images and absolute values for float images; NaN equals only NaN.");
+  compare->add_option("a", cmp->a, "Expected image")->required();
+  compare->add_option("b", cmp->b, "Actual image")->required();
+  compare->add_option("--fail", cmp->o.failThreshold, "Per-channel |Δ| above this fails (default 0: exact)");
+  compare->add_option("--failpercent", cmp->o.failPercent, "Allow this % of pixels above --fail");
+  compare->add_option("--warn", cmp->warn, "Per-channel |Δ| above this warns");
+  compare->add_option("--warnpercent", cmp->o.warnPercent, "Allow this % of pixels above --warn");
+  compare->add_option("--report", cmp->report, "Write report.json, heatmap.png, histogram.png and index.html here");
+  compare->callback([cmp] {
+    if (cmp->warn >= 0) cmp->o.warnThreshold = cmp->warn;
+    const verify::CompareResult r = verify::compareImages(cmp->a, cmp->b, cmp->o);
+    if (!cmp->report.empty()) verify::writeCompareReport(r, cmp->report);
+    std::printf("%s\n", verify::compareToJson(r).dump(2).c_str());
+    if (r.exitCode()) throw CLI::RuntimeError(r.exitCode());
+  });
+
+  auto ba = std::make_shared<BenchArgs>();
+  auto* bench = app.add_subcommand("bench", "Benchmarks");
+  bench->require_subcommand(1);
+  auto* bc = bench->add_subcommand(
+      "crosscheck", "Time the same frame on the oracle and on llvmpipe with the same thread count; prints JSON with "
+                    "ratio = llvmpipe / oracle (above 1: the oracle is faster)");
+  bc->add_option("scene", ba->scene, "Scene name or .tframe file")->required();
+  bc->add_option("--threads", ba->threads, "Threads for both (oracle workers, LP_NUM_THREADS)")->check(CLI::Range(1, 64));
+  bc->add_option("--size", ba->size, "Target size WxH");
+  bc->add_option("--repeat", ba->repeat, "Timed runs (median reported)")->check(CLI::Range(1, 1000));
+  bc->callback([ba] { runBench(*ba); });
+}
+
+}  // namespace tessera::cli
