@@ -36,27 +36,30 @@ inline bool planeEnabled(int p, uint8_t clipMask) {
 }  // namespace
 
 ClipResult classifyTriangle(const VertexOut (&v)[3], uint8_t clipMask) {
-  // Non-finite positions (possible only through program arithmetic; validation rejects non-finite
-  // input positions) make the primitive undefined in GL; the oracle discards it.
-  for (const VertexOut& o : v)
-    for (float c : o.pos)
-      if (!std::isfinite(c)) return ClipResult::Outside;
-  bool cut = false;
-  for (int p = 0; p < kFixedPlanes + kMaxClipDistances; ++p) {
-    if (!planeEnabled(p, clipMask)) continue;
-    int outside = 0;
-    for (const VertexOut& o : v) {
-      const double pos[4] = {o.pos[0], o.pos[1], o.pos[2], o.pos[3]};
-      double clip[kMaxClipDistances];
-      for (int k = 0; k < kMaxClipDistances; ++k) clip[k] = o.clip[k];
-      const double d = planeDistance(pos, clip, p);
-      // NaN clip distances count as outside: GL leaves them undefined, the oracle drops the vertex side.
-      if (!(d >= 0.0)) ++outside;
-    }
-    if (outside == 3) return ClipResult::Outside;
-    if (outside > 0) cut = true;
+  // One bit per plane (planeDistance's numbering) that the vertex lies outside of.
+  uint32_t out[3];
+  for (int i = 0; i < 3; ++i) {
+    const VertexOut& o = v[i];
+    // Non-finite positions (possible only through program arithmetic; validation rejects non-finite
+    // input positions) make the primitive undefined in GL; the oracle discards it.
+    if (!std::isfinite(o.pos[0]) || !std::isfinite(o.pos[1]) || !std::isfinite(o.pos[2]) || !std::isfinite(o.pos[3]))
+      return ClipResult::Outside;
+    const double x = o.pos[0], y = o.pos[1], z = o.pos[2], w = o.pos[3];
+    const double gw = kGuardBand * w;
+    uint32_t m = 0;
+    m |= uint32_t(!(z + w >= 0.0)) << 0;
+    m |= uint32_t(!(w - z >= 0.0)) << 1;
+    m |= uint32_t(!(gw + x >= 0.0)) << 2;
+    m |= uint32_t(!(gw - x >= 0.0)) << 3;
+    m |= uint32_t(!(gw + y >= 0.0)) << 4;
+    m |= uint32_t(!(gw - y >= 0.0)) << 5;
+    // NaN clip distances count as outside: GL leaves them undefined, the oracle drops that side.
+    for (int k = 0; k < kMaxClipDistances; ++k)
+      if ((clipMask >> k & 1) && !(double(o.clip[k]) >= 0.0)) m |= 1u << (kFixedPlanes + k);
+    out[i] = m;
   }
-  return cut ? ClipResult::Clipped : ClipResult::Inside;
+  if (out[0] & out[1] & out[2]) return ClipResult::Outside;  // all three outside one plane
+  return (out[0] | out[1] | out[2]) ? ClipResult::Clipped : ClipResult::Inside;
 }
 
 int clipTriangle(const VertexOut (&v)[3], uint8_t clipMask, int varyings, ClipVertex (&out)[kMaxClipPolygon]) {

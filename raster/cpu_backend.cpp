@@ -64,6 +64,8 @@ Rect intersect(const Rect& a, const Rect& b) {
 // Vertices shaded per parallel task; vertex shading has no cross-vertex state, so any split gives
 // the same bytes.
 constexpr size_t kVertexChunk = 1024;
+// Triangles set up per parallel task.
+constexpr size_t kSetupChunk = 256;
 
 }  // namespace
 
@@ -92,6 +94,7 @@ struct CpuBackend::Impl {
 
   Scene scene;
   PipelineStats stats;
+  std::vector<SetupSink> sinks;  // reused across draws
   tbb::enumerable_thread_specific<RastScratch> scratch;
 
   void resize(ResourceId id) {
@@ -258,28 +261,42 @@ struct CpuBackend::Impl {
     params.varyings = ds.varyings;
     params.provenance = options.provenance;
     const bool layered = target.layer == kLayered;
-    for (uint32_t t = 0; t < triCount; ++t) {
-      VertexOut v[3];
-      for (int k = 0; k < 3; ++k) v[k] = out[dense ? idx[3 * t + uint32_t(k)] - lo : 3 * t + uint32_t(k)];
-      uint32_t layer = 0;
-      if (ds.program->hasGeometryStage() && !ds.program->shadeTriangle(v, t, layer, ds.ctx)) {
-        ++stats.primitives_assembled;
-        ++stats.primitives_dropped_by_program;
-        continue;
-      }
-      if (layered) {
-        // GL 4.6 §9.8: a layer outside the attachments gives undefined results; the oracle drops
-        // the primitive (llvmpipe clamps), docs/spec-choices.md "Layered rendering".
-        if (layer >= scene.target.layerCount) {
-          ++stats.primitives_assembled;
-          ++stats.primitives_dropped_by_program;
-          continue;
+    // Setup runs in parallel over fixed chunks of triangles, each chunk into its own sink; the sinks
+    // are appended in chunk order, so the bins see the triangles in submission order whatever the
+    // thread count (setup of one triangle never reads another's).
+    const size_t chunks = (size_t(triCount) + kSetupChunk - 1) / kSetupChunk;
+    if (sinks.size() < chunks) sinks.resize(chunks);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t c = r.begin(); c != r.end(); ++c) {
+        SetupSink& sink = sinks[c];
+        sink.clear();
+        sink.tilesX = scene.tilesX;
+        const uint32_t t0 = uint32_t(c * kSetupChunk), t1 = std::min<uint32_t>(triCount, t0 + uint32_t(kSetupChunk));
+        for (uint32_t t = t0; t < t1; ++t) {
+          VertexOut v[3];
+          for (int k = 0; k < 3; ++k) v[k] = out[dense ? idx[3 * t + uint32_t(k)] - lo : 3 * t + uint32_t(k)];
+          uint32_t layer = 0;
+          if (ds.program->hasGeometryStage() && !ds.program->shadeTriangle(v, t, layer, ds.ctx)) {
+            ++sink.stats.primitives_assembled;
+            ++sink.stats.primitives_dropped_by_program;
+            continue;
+          }
+          if (layered) {
+            // GL 4.6 §9.8: a layer outside the attachments gives undefined results; the oracle drops
+            // the primitive (llvmpipe clamps), docs/spec-choices.md "Layered rendering".
+            if (layer >= scene.target.layerCount) {
+              ++sink.stats.primitives_assembled;
+              ++sink.stats.primitives_dropped_by_program;
+              continue;
+            }
+          } else {
+            layer = target.layer;  // gl_Layer is ignored for a non-layered target
+          }
+          setupTriangle(v, t, layer, params, sink);
         }
-      } else {
-        layer = target.layer;  // gl_Layer is ignored for a non-layered target
       }
-      setupTriangle(v, t, layer, params, scene, stats);
-    }
+    });
+    for (size_t c = 0; c < chunks; ++c) appendToScene(sinks[c], scene, stats);
   }
 
   void run(const CommandList& list) {

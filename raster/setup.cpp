@@ -23,8 +23,8 @@ inline int64_t floorDiv(int64_t a, int64_t b) {
 
 // Bins a snapped triangle given window vertices in submission order.
 void binTriangle(WindowVertex w0, WindowVertex w1, WindowVertex w2, const VertexOut& provoking, uint32_t primitiveId,
-                 uint32_t layer, bool clipped, const SetupParams& params, Scene& scene, PipelineStats& stats,
-                 bool& binned) {
+                 uint32_t layer, bool clipped, const SetupParams& params, SetupSink& sink, bool& binned) {
+  PipelineStats& stats = sink.stats;
   // Doubled signed area from the snapped coordinates (GL 4.6 §14.6.1, eq. 14.8 in window space).
   const int64_t area2 = (w1.x - w0.x) * (w2.y - w0.y) - (w2.x - w0.x) * (w1.y - w0.y);
   if (area2 == 0) return;  // degenerate after snapping: no fragments (docs/spec-choices.md)
@@ -34,7 +34,8 @@ void binTriangle(WindowVertex w0, WindowVertex w1, WindowVertex w2, const Vertex
   if (params.raster.cull == CullMode::Front && front) return;
   if (!ccw) std::swap(w1, w2);  // edge functions below assume counter-clockwise order
 
-  TriSetup t;
+  // Built in place at the end of the arena (a TriSetup is ~300 bytes); removed again if no tile takes it.
+  TriSetup& t = sink.tris.emplace_back();
   t.area2 = ccw ? area2 : -area2;
   const WindowVertex* wv[3] = {&w0, &w1, &w2};
   for (int i = 0; i < 3; ++i) {
@@ -66,7 +67,10 @@ void binTriangle(WindowVertex w0, WindowVertex w1, WindowVertex w2, const Vertex
   const int64_t x1 = std::min<int64_t>(floorDiv(maxx - kSubpixelHalf, kSubpixelOne) + grow, int64_t(r.x) + r.w - 1);
   const int64_t y0 = std::max<int64_t>(floorDiv(miny - kSubpixelHalf + kSubpixelOne - 1, kSubpixelOne) - grow, r.y);
   const int64_t y1 = std::min<int64_t>(floorDiv(maxy - kSubpixelHalf, kSubpixelOne) + grow, int64_t(r.y) + r.h - 1);
-  if (x0 > x1 || y0 > y1) return;
+  if (x0 > x1 || y0 > y1) {
+    sink.tris.pop_back();
+    return;
+  }
   t.minX = int32_t(x0), t.maxX = int32_t(x1), t.minY = int32_t(y0), t.maxY = int32_t(y1);
 
   for (int k = 0; k < kMaxFlatVaryings; ++k) t.flat[k] = provoking.flat[k];
@@ -76,7 +80,7 @@ void binTriangle(WindowVertex w0, WindowVertex w1, WindowVertex w2, const Vertex
   t.frontFacing = front;
   t.clipped = clipped;
 
-  const uint32_t index = uint32_t(scene.tris.size());
+  const size_t tilesBefore = sink.tiles.size();
   bool any = false;
   for (int32_t ty = t.minY >> kTileOrder; ty <= (t.maxY >> kTileOrder); ++ty) {
     for (int32_t tx = t.minX >> kTileOrder; tx <= (t.maxX >> kTileOrder); ++tx) {
@@ -94,12 +98,16 @@ void binTriangle(WindowVertex w0, WindowVertex w1, WindowVertex w2, const Vertex
         reject = t.a[i] * sx + t.b[i] * sy + t.c[i] - t.bias[i] + slack < 0;
       }
       if (reject) continue;
-      scene.bins[size_t(ty) * size_t(scene.tilesX) + size_t(tx)].push_back({TileOp::Triangle, index});
+      sink.tiles.push_back(uint32_t(ty) * uint32_t(sink.tilesX) + uint32_t(tx));
       any = true;
     }
   }
-  if (!any) return;
-  scene.tris.push_back(t);
+  if (!any) {
+    sink.tris.pop_back();
+    sink.tiles.resize(tilesBefore);
+    return;
+  }
+  sink.tileEnd.push_back(uint32_t(sink.tiles.size()));
   ++stats.triangles_binned;
   binned = true;
 }
@@ -128,8 +136,21 @@ inline WindowVertex toWindow(const double pos[4], const Rect& vp) {
 
 }  // namespace
 
+void appendToScene(const SetupSink& sink, Scene& scene, PipelineStats& stats) {
+  const uint32_t base = uint32_t(scene.tris.size());
+  scene.tris.insert(scene.tris.end(), sink.tris.begin(), sink.tris.end());
+  uint32_t begin = 0;
+  for (size_t i = 0; i < sink.tris.size(); ++i) {
+    for (uint32_t k = begin; k < sink.tileEnd[i]; ++k)
+      scene.bins[sink.tiles[k]].push_back({TileOp::Triangle, base + uint32_t(i)});
+    begin = sink.tileEnd[i];
+  }
+  stats.add(sink.stats);
+}
+
 void setupTriangle(const VertexOut (&v)[3], uint32_t primitiveId, uint32_t layer, const SetupParams& params,
-                   Scene& scene, PipelineStats& stats) {
+                   SetupSink& sink) {
+  PipelineStats& stats = sink.stats;
   ++stats.primitives_assembled;
   const ClipResult cr = classifyTriangle(v, params.raster.clipMask);
   if (cr == ClipResult::Outside) {
@@ -150,7 +171,7 @@ void setupTriangle(const VertexOut (&v)[3], uint32_t primitiveId, uint32_t layer
       w[i] = toWindow(pos, params.viewport);
       w[i].varF = v[i].var;
     }
-    binTriangle(w[0], w[1], w[2], v[2], primitiveId, layer, false, params, scene, stats, binned);
+    binTriangle(w[0], w[1], w[2], v[2], primitiveId, layer, false, params, sink, binned);
   } else {
     ++stats.primitives_clipped;
     ClipVertex poly[kMaxClipPolygon];
@@ -167,7 +188,7 @@ void setupTriangle(const VertexOut (&v)[3], uint32_t primitiveId, uint32_t layer
     }
     // Fan from the first vertex; every sub-triangle keeps the primitive's provoking vertex and id.
     for (int i = 1; i + 1 < n; ++i)
-      binTriangle(w[0], w[i], w[i + 1], v[2], primitiveId, layer, true, params, scene, stats, binned);
+      binTriangle(w[0], w[i], w[i + 1], v[2], primitiveId, layer, true, params, sink, binned);
   }
   if (!binned) ++stats.primitives_culled;
 }

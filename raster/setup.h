@@ -22,9 +22,29 @@ struct SetupParams {
   bool provenance = false;  // bin with bounding boxes one pixel wider (near-miss pixels can be ties)
 };
 
-// Sets up one triangle (after the vertex/geometry stages) and bins what survives.
+// Where setup puts its output: the set-up triangles in order and, per triangle, the tiles it must
+// be binned into. Draws set up chunks of triangles in parallel, each into its own sink; the sinks
+// are then appended to the scene in triangle order (appendToScene), so bins keep submission order.
+struct SetupSink {
+  int32_t tilesX = 0;
+  std::vector<TriSetup> tris;
+  std::vector<uint32_t> tiles;     // tile indices, triangle after triangle
+  std::vector<uint32_t> tileEnd;   // per triangle: end of its run in `tiles`
+  PipelineStats stats;
+  void clear() {
+    tris.clear();
+    tiles.clear();
+    tileEnd.clear();
+    stats = {};
+  }
+};
+
+// Sets up one triangle (after the vertex/geometry stages) and records what survives in `sink`.
 void setupTriangle(const VertexOut (&v)[3], uint32_t primitiveId, uint32_t layer, const SetupParams& params,
-                   Scene& scene, PipelineStats& stats);
+                   SetupSink& sink);
+
+// Appends a sink's triangles to the scene and its bins, in order, and adds its stats.
+void appendToScene(const SetupSink& sink, Scene& scene, PipelineStats& stats);
 
 // Round half to even of a finite double with |v| < 2^62 to int64 (the snapping and unorm conversion
 // rule; never depends on the FPU rounding mode). Inline: it runs per pixel and channel.

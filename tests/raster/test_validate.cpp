@@ -436,18 +436,19 @@ TEST(Validate, AHugeSparselyUploadedBufferIsCheckedExactlyAndCheaply) {
   f.l.uploadBuffer(big, 65534, std::span(reinterpret_cast<const uint8_t*>(v.data()), v.size() * 4));
   VertexLayout l;
   l.stride = 16;
-  l.attribs[0] = {0, 4, AttribType::F32, 65534};
+  // Byte 65534 = vertex 4095 (16 * 4095 = 65520) + attribute offset 14 (offsets stay <= 2047).
+  l.attribs[0] = {0, 4, AttribType::F32, 14};
   f.l.bindVertexBuffer(big);
   f.l.setVertexLayout(l);
-  f.l.draw(1, 3);  // vertices 1..3: uploaded 0.5s and zeros
+  f.l.draw(4096, 3);  // vertices 4096..4098: uploaded 0.5s and zeros
   EXPECT_TRUE(validate(f.l).empty()) << dump(validate(f.l));
-  f.l.draw(0, 3);
-  expectOnlyOnLast(f.l, "vertex 0: position (location 0) component 0 is nan");
-  f.l.draw(67104000, 3);  // far into the never-uploaded part: zeros
-  f.l.draw(67104767, 3);  // vertex 67104767 is the last that fits; the next ends 14 bytes past 2^30
+  f.l.draw(4095, 3);
+  expectOnlyOnLast(f.l, "vertex 4095: position (location 0) component 0 is nan");
+  f.l.draw(67108095, 3);  // far into the never-uploaded part: zeros
+  f.l.draw(67108862, 3);  // vertex 67108862 is the last that fits; the next ends 14 bytes past 2^30
   const auto diags = validate(f.l);
   ASSERT_EQ(diags.size(), 2u) << dump(diags);
-  EXPECT_NE(diags[1].message.find("vertex 67104768: attribute at location 0 reads bytes"), std::string::npos)
+  EXPECT_NE(diags[1].message.find("vertex 67108863: attribute at location 0 reads bytes"), std::string::npos)
       << dump(diags);
 }
 
