@@ -10,7 +10,10 @@
 
 #include <fmt/format.h>
 
+#include "gl/gl_backend.h"
 #include "tools/cli/commands.h"
+#include "verify/crosscheck.h"
+#include "verify/crosscheck_report.h"
 #include "tools/cli/frame_job.h"
 #include "tools/scenes/scenes.h"
 
@@ -22,6 +25,7 @@ struct DemoArgs {
   std::string outDir = "out/demo";
   int threads = 0;
   bool checkThreads = true;
+  bool gl = true;
 };
 
 std::string htmlEscape(const std::string& s) {
@@ -47,7 +51,17 @@ void runDemo(const DemoArgs& a) {
   report["threads"] = threads;
   nlohmann::json scenesJson = nlohmann::json::array();
   std::string rows;
-  bool allAgree = true;
+  bool allAgree = true, allExplained = true;
+  std::unique_ptr<gl::GlBackend> glb;
+  if (a.gl) {
+    try {
+      glb = gl::GlBackend::create({});
+      report["gl_info"] = glb->info().toJson();
+    } catch (const Error& e) {
+      std::fprintf(stderr, "demo: no GL cross-check: %s\n", e.what());
+      report["gl_error"] = e.what();
+    }
+  }
   const auto& all = scenes::all();
   for (size_t i = 0; i < all.size(); ++i) {
     const scenes::SceneInfo& s = all[i];
@@ -82,8 +96,28 @@ void runDemo(const DemoArgs& a) {
       entry["oracle_ms_1_thread"] = single["timing"]["oracle_ms"];
       allAgree = allAgree && agree;
     }
-    std::fprintf(stderr, "%8.1f ms  %s\n", stats["timing"]["oracle_ms"].get<double>(),
-                 std::string(stats["image_sha256"]).substr(0, 16).c_str());
+    std::string crossCell = "<td>-</td>";
+    std::string glNote;
+    if (glb) {
+      verify::CrosscheckOptions co;
+      co.threads = threads;
+      const verify::CrosscheckResult cr = verify::crosscheck(list, name, co, glb.get());
+      const std::string dir = a.outDir + "/crosscheck/" + name;
+      verify::writeCrosscheckReport(cr, dir);
+      const bool countersEqual = cr.json["counters"]["equal"].get<bool>();
+      entry["crosscheck"] = {{"exact_match_percent", cr.json["exact_match_percent"]},
+                             {"unexplained", cr.json["unexplained"]},
+                             {"counters_equal", countersEqual},
+                             {"report", "crosscheck/" + name + "/index.html"}};
+      allExplained = allExplained && cr.passed;
+      crossCell = fmt::format("<td><a href='crosscheck/{}/index.html'>{:.2f}% exact, {} unexplained</a>{}</td>", name,
+                              cr.json["exact_match_percent"].get<double>(), cr.json["unexplained"].dump(),
+                              countersEqual ? "" : " <b>counters differ</b>");
+      glNote = fmt::format("  GL: {:.2f}% exact, {} unexplained", cr.json["exact_match_percent"].get<double>(),
+                           cr.json["unexplained"].dump());
+    }
+    std::fprintf(stderr, "%8.1f ms  %s%s\n", stats["timing"]["oracle_ms"].get<double>(),
+                 std::string(stats["image_sha256"]).substr(0, 16).c_str(), glNote.c_str());
     std::string imgs;
     for (const auto& img : stats["images"]) {
       const std::string file = fs::path(img["file"].get<std::string>()).filename().string();
@@ -94,14 +128,15 @@ void runDemo(const DemoArgs& a) {
     }
     rows += fmt::format(
         "<tr><td><b>{}</b><br><small>{}</small></td><td>{}</td><td>{}</td><td>{}</td><td>{:.1f}</td>"
-        "<td><code>{}</code></td></tr>\n",
+        "<td><code>{}</code></td>{}</tr>\n",
         htmlEscape(name), htmlEscape(std::string(s.rule)), imgs, stats["counters"]["draw_calls"].dump(),
         stats["counters"]["texture_state_changes"].dump(), stats["timing"]["oracle_ms"].get<double>(),
-        std::string(stats["image_sha256"]).substr(0, 16));
+        std::string(stats["image_sha256"]).substr(0, 16), crossCell);
     scenesJson.push_back(entry);
   }
   report["scenes"] = scenesJson;
   report["bit_identical_1_vs_n_threads"] = allAgree;
+  if (glb) report["gl_every_pixel_explained"] = allExplained;
   writeTextFile(a.outDir + "/report.json", report.dump(2) + "\n");
   const std::string html = fmt::format(
       "<!doctype html><meta charset=utf-8><title>Tessera demo</title>"
@@ -109,11 +144,12 @@ void runDemo(const DemoArgs& a) {
       "border:1px solid #888}}td{{vertical-align:top;padding:4px}}</style>"
       "<h1>Tessera demo: built-in scenes on the oracle</h1><p>{} threads; bytes identical at 1 thread: {}</p>"
       "<table border=1 cellspacing=0><tr><th>scene</th><th>images</th><th>draw calls</th>"
-      "<th>texture state changes</th><th>ms</th><th>image sha256</th></tr>\n{}</table>\n",
+      "<th>texture state changes</th><th>ms</th><th>image sha256</th><th>oracle vs GL (llvmpipe)</th></tr>\n{}</table>\n",
       threads, allAgree ? "yes" : "NO", rows);
   writeTextFile(a.outDir + "/index.html", html);
   std::fprintf(stderr, "wrote %s/report.json and %s/index.html\n", a.outDir.c_str(), a.outDir.c_str());
   std::printf("%s\n", report.dump(2).c_str());
+  if (glb && !allExplained) throw Error("demo: GL produced pixels the oracle cannot explain; see the crosscheck reports");
   if (!allAgree) throw Error("demo: some scene rendered different bytes at 1 thread than at " + std::to_string(threads));
 }
 
@@ -126,6 +162,7 @@ void addDemoCommand(CLI::App& app) {
   demo->add_option("-o,--output", a->outDir, "Output directory")->capture_default_str();
   demo->add_option("--threads", a->threads, "Worker threads (0 = all cores)")->check(CLI::Range(0, 1024));
   demo->add_flag("!--no-thread-check", a->checkThreads, "Skip the 1-thread re-render that checks bit-identity");
+  demo->add_flag("!--no-gl", a->gl, "Skip the oracle-vs-OpenGL cross-check of every scene");
   demo->callback([a] { runDemo(*a); });
 }
 
