@@ -697,8 +697,12 @@ void intervalPixel(const TexUnit& u, float s, float t, float r, bool array, cons
           sampleN(u, p, 1, &sc[a], &tc[b], &layer, v);
           if (sameValue(v[0], nominal)) continue;
           iv.add(v[0]);
-          if (lam[li] != lamOracle) classes |= kLodNearSwitch;
-          if (a != ns - 1 || b != nt - 1) classes |= kSubtexelNearHalf;
+          // A class names the freedom that alone changes the value: the LOD with the nominal
+          // coordinates and layer, or the coordinates with the oracle's LOD and layer. Combinations
+          // only widen the interval.
+          const bool nominalCoords = a == ns - 1 && b == nt - 1, nominalLayer = layer == layerOracle;
+          if (lam[li] != lamOracle && nominalCoords && nominalLayer) classes |= kLodNearSwitch;
+          if (lam[li] == lamOracle && !nominalCoords && nominalLayer) classes |= kSubtexelNearHalf;
         }
   }
   if (classes & kFilterPrecision) {
