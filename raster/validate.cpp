@@ -414,12 +414,12 @@ class Validator {
     // GL's minimum MAX_VERTEX_ATTRIB_STRIDE is 2048 and MAX_VERTEX_ATTRIB_RELATIVE_OFFSET 2047
     // (GL 4.6 Table 23.55); llvmpipe has exactly these, so a frame beyond them is not portable.
     if (c.layout.stride > 2048) {
-      report("stride {} exceeds GL's guaranteed MAX_VERTEX_ATTRIB_STRIDE (2048)", c.layout.stride);
+      report("stride {} exceeds GL's guaranteed GL_MAX_VERTEX_ATTRIB_STRIDE (2048)", c.layout.stride);
       layoutOk_ = false;
     }
     for (size_t i = 0; i < c.layout.attribs.size(); ++i)
       if (c.layout.attribs[i].components != 0 && c.layout.attribs[i].offset > 2047) {
-        report("attribs[{}]: offset {} exceeds GL's guaranteed MAX_VERTEX_ATTRIB_RELATIVE_OFFSET (2047)", i,
+        report("attribs[{}]: offset {} exceeds GL's guaranteed GL_MAX_VERTEX_ATTRIB_RELATIVE_OFFSET (2047)", i,
                c.layout.attribs[i].offset);
         layoutOk_ = false;
       }
