@@ -83,14 +83,16 @@ RgbaCanvas heatmap(const CompareResult& r) {
   return cv;
 }
 
-RgbaCanvas histogramChart(const CompareResult& r) {
+}  // namespace
+
+RgbaCanvas histogramChart(const std::array<uint64_t, kHistogramBins>& histogram) {
   constexpr int kSlot = 64, kMargin = 20, kTop = 24, kBase = 240, kScale = 2;
   RgbaCanvas cv(2 * kMargin + kHistogramBins * kSlot, 280, {255, 255, 255, 255});
   uint64_t most = 0;
-  for (uint64_t c : r.histogram) most = std::max(most, c);
+  for (uint64_t c : histogram) most = std::max(most, c);
   const double top = std::log10(1.0 + double(most));
   for (int i = 0; i < kHistogramBins; ++i) {
-    const uint64_t count = r.histogram[size_t(i)];
+    const uint64_t count = histogram[size_t(i)];
     const int x = kMargin + i * kSlot;
     // Log scale: bin 0 (equal pixels) is usually orders of magnitude above the rest.
     int bar = top > 0 ? int(std::lround(double(kBase - kTop) * std::log10(1.0 + double(count)) / top)) : 0;
@@ -106,6 +108,8 @@ RgbaCanvas histogramChart(const CompareResult& r) {
   cv.text(cv.width() - kMargin - RgbaCanvas::textWidth("LSB", kScale), kBase + 24, "LSB", {90, 90, 90, 255}, kScale);
   return cv;
 }
+
+namespace {
 
 void writeCanvas(const std::string& path, const RgbaCanvas& cv) {
   writePngRGBA8(path, cv.width(), cv.height(), cv.data());
@@ -136,7 +140,7 @@ void writeCompareReport(const CompareResult& result, const std::string& dir) {
     writePngRGBA8(base + "expected.png", a.width, a.height, preview(a).data());
     writePngRGBA8(base + "actual.png", b.width, b.height, preview(b).data());
     writeCanvas(base + "heatmap.png", heatmap(result));
-    writeCanvas(base + "histogram.png", histogramChart(result));
+    writeCanvas(base + "histogram.png", histogramChart(result.histogram));
   }
   writeTextAtomically(base + "index.html", renderReportHtml(result, report));
 }

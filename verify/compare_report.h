@@ -27,6 +27,10 @@ namespace tessera::verify {
 // Throws Error naming the file on any write failure.
 void writeCompareReport(const CompareResult& result, const std::string& dir);
 
+// The error histogram as a bar chart (log scale, counts above, bin labels below); also used by the
+// cross-check report, whose judgement has the same bins.
+RgbaCanvas histogramChart(const std::array<uint64_t, kHistogramBins>& histogram);
+
 // Heat-map colour of a histogram bin (0 .. kHistogramBins - 1) or CompareResult::kNonFiniteBin.
 Rgba heatColor(int bin);
 

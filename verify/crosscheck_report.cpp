@@ -121,6 +121,8 @@ void writeCrosscheckReport(const CrosscheckResult& result, const std::string& di
     }
     writePngRGBA8(dir + "/" + p + "heat.png", j.width, j.height, heat.data());
     writePngRGBA8(dir + "/" + p + "classes.png", j.width, j.height, cls.data());
+    const RgbaCanvas hist = histogramChart(j.histogram);
+    writePngRGBA8(dir + "/" + p + "histogram.png", hist.width(), hist.height(), hist.data());
 
     const nlohmann::json jj = toJson(j);
     std::string rows;
@@ -139,6 +141,7 @@ void writeCrosscheckReport(const CrosscheckResult& result, const std::string& di
         "<figure><img id=alt{k} src='{p}oracle.png'><figcaption><button onclick='flip({k})'>alternate oracle / GL</button> "
         "<span id=altl{k}>oracle</span></figcaption></figure></div>"
         "<p class=insp id=insp{k}>click or hover a pixel to inspect it</p>"
+        "<p><img src='{p}histogram.png' style='width:auto'><br>error histogram (|Δ| per pixel, largest channel, log scale)</p>"
         "<table><tr><th>class</th><th>pixels</th><th>explained differences</th></tr>{rows}</table>",
         fmt::arg("name", v.name), fmt::arg("fmt", formatName(j.format)), fmt::arg("w", j.width), fmt::arg("h", j.height),
         fmt::arg("verdict", j.passed() ? "PASS" : "FAIL"), fmt::arg("exact", j.exactPercent()),
@@ -178,7 +181,7 @@ function inspect(k,ev){{const d=D[k];const out=document.getElementById('insp'+k)
  if(x<0||y<0||x>=d.w||y>=d.h)return;const i=y*d.w+x,s=i*d.ch;const sl=a=>JSON.stringify(a.slice(s,s+d.ch));
  const c=d.c[i];const cn=NAMES.filter((n,b)=>c>>b&1);
  out.textContent=`x=${{x}} y=${{y}} (image rows from the top) oracle=${{sl(d.o)}} GL=${{sl(d.g)}} legal [lo,hi]=${{sl(d.lo)}}..${{sl(d.hi)}} classes=${{cn.join(' ')||'none (must match exactly)'}}`;}}
-document.querySelectorAll('img').forEach(im=>{{const k=parseInt((im.getAttribute('src').match(/img(\d+)_/)||[])[1]);
+document.querySelectorAll('img').forEach(im=>{{const k=parseInt((im.getAttribute('src').match(/img(\d+)_(oracle|gl|heat|classes)/)||[])[1]);
  if(!isNaN(k)){{im.addEventListener('mousemove',e=>inspect(k,e));im.addEventListener('click',e=>inspect(k,e));}}}});
 </script>
 )",

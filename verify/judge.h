@@ -36,7 +36,7 @@ struct Judgement {
   std::array<uint64_t, kClassCount> classPixels{};     // pixels carrying each class
   std::array<uint64_t, kClassCount> classExplained{};  // explained pixels carrying each class
   std::array<double, 4> maxAbsDiff{};                  // LSBs for unorm, value units otherwise
-  std::array<uint64_t, 10> histogram{};  // |delta| in LSB: 0, 1, 2, 3-4, 5-8, 9-16, 17-32, 33-64, 65-128, 129+
+  std::array<uint64_t, 10> histogram{};  // same bins as image_compare.h kHistogramBins  // |delta| in LSB: 0, 1, 2, 3-4, 5-8, 9-16, 17-32, 33-64, 65-128, 129+
   double mse = 0.0;                      // mean squared error over channels, in LSB^2 for unorm
   std::vector<PixelRecord> firstUnexplained;  // up to kMaxRecords
   std::vector<uint16_t> classMap;    // per pixel (top-down), for overlays
