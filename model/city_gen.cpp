@@ -37,7 +37,7 @@ struct Rng {
   uint64_t next() { return mix(state++); }
   uint32_t below(uint32_t n) { return uint32_t(next() % n); }
   int range(int lo, int hi) { return lo + int(below(uint32_t(hi - lo + 1))); }  // [lo, hi]
-  double unit() { return double(next() >> 11) * (1.0 / 9007199254740992.0); }    // [0, 1), exact
+  double unit() { return double(next() >> 11) * (1.0 / 9007199254740992.0); }   // [0, 1), exact
 };
 
 float f(double v) { return float(v); }
@@ -151,7 +151,9 @@ struct Pool {
   uint32_t take() { return first + (cursor++ % count); }
 };
 
-uint32_t scaled(uint32_t size, uint32_t textureSize) { return std::max<uint32_t>(4, uint32_t(uint64_t(size) * textureSize / 512)); }
+uint32_t scaled(uint32_t size, uint32_t textureSize) {
+  return std::max<uint32_t>(4, uint32_t(uint64_t(size) * textureSize / 512));
+}
 
 }  // namespace
 
@@ -162,15 +164,21 @@ Scene buildChemnitz(uint32_t buildings, uint64_t seed, uint32_t textureSize) {
   Rng rng{mix(seed ^ 0xc4e3u)};
   Pool pools[] = {{TexKind::Facade, 540}, {TexKind::Roof, 150}, {TexKind::Detail, 160}, {TexKind::Pavement, 50},
                   {TexKind::Fence, 40},   {TexKind::Tree, 40},  {TexKind::Glass, 20}};
+  // 5 textures per building: every kind but facades gets its share (at least one), facades the rest.
   const uint32_t total = 5 * buildings;
+  uint32_t others = 0;
+  for (Pool& p : pools)
+    if (p.kind != TexKind::Facade)
+      p.count = std::max<uint32_t>(1, uint32_t(uint64_t(total) * p.per1000 / 1000)), others += p.count;
+  pools[0].count = total > others + 3 ? total - others : 3;
   for (Pool& p : pools) {
     p.first = uint32_t(s.textures.size());
-    p.count = std::max<uint32_t>(1, (total * p.per1000 + 999) / 1000);
     for (uint32_t k = 0; k < p.count; ++k) {
       TexSpec t{p.kind, 0, 0, mix(seed * 0x2545f491u + s.textures.size()), 0};
       // Mixed sizes, mostly small (the thesis: ~36 M texels in ~2,000 textures): 64..512 per axis,
       // and every 37th texture not a power of two, to exercise odd mip extents.
-      static constexpr uint32_t kSizes[] = {64, 64, 64, 64, 64, 64, 64, 64, 64, 128, 128, 128, 128, 128, 128, 128, 256, 256, 256, 512};
+      static constexpr uint32_t kSizes[] = {64,  64,  64,  64,  64,  64,  64,  64,  64,  128,
+                                            128, 128, 128, 128, 128, 128, 256, 256, 256, 512};
       uint32_t w = kSizes[rng.below(std::size(kSizes))], h = kSizes[rng.below(std::size(kSizes))];
       if (s.textures.size() % 37 == 5) {
         static constexpr uint32_t kOdd[] = {96, 100, 160, 200, 300, 384};
@@ -192,7 +200,8 @@ Scene buildChemnitz(uint32_t buildings, uint64_t seed, uint32_t textureSize) {
   // triangle: the high repetition counts of §4.7.2 on single triangles.
   Node groundNode{.name = "ground"};
   const double extent = g * pitch;
-  ground(prim(groundNode, paves.take()), -pitch / 2, -pitch / 2, extent - pitch / 2, extent - pitch / 2, 0.0, 2000.0, 2000.0);
+  ground(prim(groundNode, paves.take()), -pitch / 2, -pitch / 2, extent - pitch / 2, extent - pitch / 2, 0.0, 2000.0,
+         2000.0);
   // Blocks of 4 x 4 lots are nodes with their own translation; buildings are rotated children.
   std::vector<uint32_t> blockNode;
   const uint32_t blocks = (g + blockLots - 1) / blockLots;
@@ -206,7 +215,8 @@ Scene buildChemnitz(uint32_t buildings, uint64_t seed, uint32_t textureSize) {
   for (uint32_t i = 0; i < buildings; ++i) {
     const uint32_t gx = i % g, gz = i / g, block = (gz / blockLots) * blocks + gx / blockLots;
     Node b{.name = "building_" + std::to_string(i)};
-    b.translation = {(gx % blockLots) * pitch + (rng.unit() - 0.5) * 3.0, 0.0, (gz % blockLots) * pitch + (rng.unit() - 0.5) * 3.0};
+    b.translation = {(gx % blockLots) * pitch + (rng.unit() - 0.5) * 3.0, 0.0,
+                     (gz % blockLots) * pitch + (rng.unit() - 0.5) * 3.0};
     b.yaw = rng.unit() * 2.0 * kPi;
     // A star-shaped footprint: k corners at jittered angles, radii 6..14 m.
     const int k = rng.range(5, 14), floors = rng.range(2, 8);
@@ -221,17 +231,20 @@ Scene buildChemnitz(uint32_t buildings, uint64_t seed, uint32_t textureSize) {
     for (int j = 0; j < k; ++j) {
       const double dx = px[size_t(j) + 1] - px[size_t(j)], dz = pz[size_t(j) + 1] - pz[size_t(j)];
       const double len = std::sqrt(dx * dx + dz * dz);  // correctly rounded
-      const int cols = std::max(1, int(len / 1.1));  // ~1.1 m segments: ~300 k triangles at 400 buildings
+      const int cols = std::max(1, int(len / 1.1));     // ~1.1 m segments: ~300 k triangles at 400 buildings
       // u: one repeat per 4 m of wall, v: one repeat per floor.
-      wall(prim(b, wallTex[j % 3]), px[size_t(j)], pz[size_t(j)], px[size_t(j) + 1], pz[size_t(j) + 1], 0.0, h, cols, floors,
-           0.0, len / 4.0 / cols, 1.0 / floorH);
+      wall(prim(b, wallTex[j % 3]), px[size_t(j)], pz[size_t(j)], px[size_t(j) + 1], pz[size_t(j) + 1], 0.0, h, cols,
+           floors, 0.0, len / 4.0 / cols, 1.0 / floorH);
     }
     // Pyramid roof, planar texcoords at 2 m per repeat.
     Primitive& rp = prim(b, roofs.take());
     const double apex = h + 2.0 + rng.unit() * 3.0;
     for (int j = 0; j < k; ++j) {
-      const Float3 v[3] = {{f(px[size_t(j)]), f(h), f(pz[size_t(j)])}, {f(px[size_t(j) + 1]), f(h), f(pz[size_t(j) + 1])}, {0, f(apex), 0}};
-      const Float2 t[3] = {{f(px[size_t(j)] / 2), f(pz[size_t(j)] / 2)}, {f(px[size_t(j) + 1] / 2), f(pz[size_t(j) + 1] / 2)}, {0, 0}};
+      const Float3 v[3] = {{f(px[size_t(j)]), f(h), f(pz[size_t(j)])},
+                           {f(px[size_t(j) + 1]), f(h), f(pz[size_t(j) + 1])},
+                           {0, f(apex), 0}};
+      const Float2 t[3] = {
+          {f(px[size_t(j)] / 2), f(pz[size_t(j)] / 2)}, {f(px[size_t(j) + 1] / 2), f(pz[size_t(j) + 1] / 2)}, {0, 0}};
       rp.triangle(v, t);
     }
     // Small detail: balconies along the walls, chimneys on the roof.
@@ -239,8 +252,10 @@ Scene buildChemnitz(uint32_t buildings, uint64_t seed, uint32_t textureSize) {
     for (int j = 0; j < boxes; ++j) {
       const int e = rng.range(0, k - 1);
       const double t = 0.2 + 0.6 * rng.unit(), y = floorH * rng.range(1, std::max(1, floors - 1));
-      const double bx = px[size_t(e)] + (px[size_t(e) + 1] - px[size_t(e)]) * t, bz = pz[size_t(e)] + (pz[size_t(e) + 1] - pz[size_t(e)]) * t;
-      box(prim(b, details.take()), bx * 1.05, y, bz * 1.05, 0.6 + rng.unit(), 0.15 + 0.2 * rng.unit(), 0.6 + rng.unit());
+      const double bx = px[size_t(e)] + (px[size_t(e) + 1] - px[size_t(e)]) * t,
+                   bz = pz[size_t(e)] + (pz[size_t(e) + 1] - pz[size_t(e)]) * t;
+      box(prim(b, details.take()), bx * 1.05, y, bz * 1.05, 0.6 + rng.unit(), 0.15 + 0.2 * rng.unit(),
+          0.6 + rng.unit());
     }
     box(prim(b, details.take()), 1.0, h, 1.0, 0.4, 0.5 + rng.unit(), 0.4);
     // Fence around half of the lots (RGBA, alpha MASK): one quad per side, 1 repeat per 2 m.
@@ -248,7 +263,8 @@ Scene buildChemnitz(uint32_t buildings, uint64_t seed, uint32_t textureSize) {
       Primitive& fp = prim(b, fences.take());
       const double r = 16.0;
       const double fx[5] = {-r, r, r, -r, -r}, fz[5] = {r, r, -r, -r, r};
-      for (int j = 0; j < 4; ++j) wall(fp, fx[j], fz[j], fx[j + 1], fz[j + 1], 0.0, 1.5, 4, 1, 0.0, 2 * r / 2.0 / 4, 1.0 / 1.5);
+      for (int j = 0; j < 4; ++j)
+        wall(fp, fx[j], fz[j], fx[j + 1], fz[j + 1], 0.0, 1.5, 4, 1, 0.0, 2 * r / 2.0 / 4, 1.0 / 1.5);
     }
     // Trees: two crossed quads each (RGBA, MASK).
     const int treeCount = rng.range(1, 5);
@@ -257,8 +273,10 @@ Scene buildChemnitz(uint32_t buildings, uint64_t seed, uint32_t textureSize) {
       const double a = rng.unit() * 2.0 * kPi, d = 15.0 + rng.unit() * 2.0, tx = d * detCos(a), tz = d * detSin(a);
       const double r = 2.0 + rng.unit() * 2.0, th = 4.0 + rng.unit() * 5.0;
       const Float2 t[4] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
-      const Float3 q1[4] = {{f(tx - r), 0, f(tz)}, {f(tx + r), 0, f(tz)}, {f(tx + r), f(th), f(tz)}, {f(tx - r), f(th), f(tz)}};
-      const Float3 q2[4] = {{f(tx), 0, f(tz - r)}, {f(tx), 0, f(tz + r)}, {f(tx), f(th), f(tz + r)}, {f(tx), f(th), f(tz - r)}};
+      const Float3 q1[4] = {
+          {f(tx - r), 0, f(tz)}, {f(tx + r), 0, f(tz)}, {f(tx + r), f(th), f(tz)}, {f(tx - r), f(th), f(tz)}};
+      const Float3 q2[4] = {
+          {f(tx), 0, f(tz - r)}, {f(tx), 0, f(tz + r)}, {f(tx), f(th), f(tz + r)}, {f(tx), f(th), f(tz - r)}};
       tp.quad(q1, t), tp.quad(q2, t);
     }
     // A glass canopy on one building in five (RGBA, BLEND).
@@ -307,7 +325,8 @@ nlohmann::json CitySummary::toJson() const {
 CitySummary generateCity(const CityOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   if (o.outDir.empty()) throw Error("city: no output directory (-o DIR)");
-  if (o.textureSize < 8 || o.textureSize > 8192) throw Error("--texture-size " + std::to_string(o.textureSize) + ": expected 8..8192");
+  if (o.textureSize < 8 || o.textureSize > 8192)
+    throw Error("--texture-size " + std::to_string(o.textureSize) + ": expected 8..8192");
   const uint32_t n = o.buildings ? o.buildings : defaultCityBuildings(o.preset);
   if (n > 1000000) throw Error("--buildings " + std::to_string(n) + ": at most 1,000,000");
   const city::Scene scene = o.preset == CityPreset::Berlin ? city::buildBerlin(n, o.seed, o.textureSize)

@@ -23,10 +23,9 @@
 #pragma once
 
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 namespace tessera::model {
 
@@ -35,7 +34,7 @@ enum class CityImageFormat { Png, Jpg };
 
 struct CityOptions {
   CityPreset preset = CityPreset::Berlin;
-  uint32_t buildings = 0;      // 0 = the thesis' size: berlin 10,000, chemnitz 400 (~2,000 textures)
+  uint32_t buildings = 0;  // 0 = the thesis' size: berlin 10,000, chemnitz 400 (~2,000 textures)
   uint64_t seed = 1;
   uint32_t textureSize = 512;  // berlin: facade size; chemnitz: every size is scaled by textureSize / 512
   // Png: zlib level 1 (fast; ~4x smaller than raw for these textures). Jpg: quality 90, RGB only;
@@ -52,8 +51,8 @@ struct CitySummary {
   uint64_t textures = 0, rgbaTextures = 0, triangles = 0, vertices = 0, primitives = 0;
   uint64_t textureBytesRaw = 0;  // width * height * channels summed over every texture
   uint64_t texelCount = 0;
-  uint64_t bytesOnDisk = 0;      // of every file written
-  double seconds = 0.0;          // wall time (the only field that varies between runs)
+  uint64_t bytesOnDisk = 0;  // of every file written
+  double seconds = 0.0;      // wall time (the only field that varies between runs)
   nlohmann::json toJson() const;
 };
 

@@ -4,6 +4,7 @@
 // depend on the schedule. Every file is written to <path>.tmp-<pid> and renamed; the .gltf comes
 // last, so its presence means the rest is complete.
 #include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
 #include <tbb/parallel_for.h>
 #include <unistd.h>
 
@@ -13,8 +14,6 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
-
-#include <fmt/format.h>
 
 #include "model/city_scene.h"
 #include "raster/command_list.h"
@@ -58,8 +57,10 @@ void writeImageFile(const std::string& path, const TexSpec& t, const std::vector
     spec.alpha_channel = 3;
     spec.attribute("oiio:UnassociatedAlpha", 1);  // store alpha as given, colour not premultiplied
   }
-  if (jpg) spec.attribute("Compression", "jpeg:90");
-  else spec.attribute("png:compressionLevel", 1);
+  if (jpg)
+    spec.attribute("Compression", "jpeg:90");
+  else
+    spec.attribute("png:compressionLevel", 1);
   const std::string tmp = tempName(path);
   auto out = OIIO::ImageOutput::create(path);
   if (!out) throw Error(path + ": cannot create an image writer: " + OIIO::geterror());
@@ -141,14 +142,28 @@ void writeScene(const Scene& scene, const CityOptions& o, CitySummary& s) {
           lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)},
           hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
         const size_t a = accessors.size();
-        accessors.push_back({{"bufferView", 0}, {"byteOffset", pos.size()}, {"componentType", 5126}, {"count", p.positions.size()},
-                             {"type", "VEC3"}, {"min", {lo.x, lo.y, lo.z}}, {"max", {hi.x, hi.y, hi.z}}});
-        accessors.push_back({{"bufferView", 1}, {"byteOffset", uv.size()}, {"componentType", 5126}, {"count", p.texcoords.size()},
+        accessors.push_back({{"bufferView", 0},
+                             {"byteOffset", pos.size()},
+                             {"componentType", 5126},
+                             {"count", p.positions.size()},
+                             {"type", "VEC3"},
+                             {"min", {lo.x, lo.y, lo.z}},
+                             {"max", {hi.x, hi.y, hi.z}}});
+        accessors.push_back({{"bufferView", 1},
+                             {"byteOffset", uv.size()},
+                             {"componentType", 5126},
+                             {"count", p.texcoords.size()},
                              {"type", "VEC2"}});
-        accessors.push_back({{"bufferView", 2}, {"byteOffset", idx.size()}, {"componentType", 5125}, {"count", p.indices.size()},
+        accessors.push_back({{"bufferView", 2},
+                             {"byteOffset", idx.size()},
+                             {"componentType", 5125},
+                             {"count", p.indices.size()},
                              {"type", "SCALAR"}});
         append(pos, p.positions), append(uv, p.texcoords), append(idx, p.indices);
-        prims.push_back({{"attributes", {{"POSITION", a}, {"TEXCOORD_0", a + 1}}}, {"indices", a + 2}, {"material", p.material}, {"mode", 4}});
+        prims.push_back({{"attributes", {{"POSITION", a}, {"TEXCOORD_0", a + 1}}},
+                         {"indices", a + 2},
+                         {"material", p.material},
+                         {"mode", 4}});
         s.triangles += p.indices.size() / 3;
         s.vertices += p.positions.size();
         ++s.primitives;
@@ -158,12 +173,15 @@ void writeScene(const Scene& scene, const CityOptions& o, CitySummary& s) {
     }
     nodes.push_back(jn);
   }
-  nlohmann::json materials = nlohmann::json::array(), textures = nlohmann::json::array(), images = nlohmann::json::array();
+  nlohmann::json materials = nlohmann::json::array(), textures = nlohmann::json::array(),
+                 images = nlohmann::json::array();
   for (size_t i = 0; i < nt; ++i) {
     const TexSpec& t = scene.textures[i];
     nlohmann::json m = {{"name", fmt::format("m{}", i)},
-                        {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", i}}}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}}};
-    if (t.kind == TexKind::Fence || t.kind == TexKind::Tree) m["alphaMode"] = "MASK", m["alphaCutoff"] = 0.5, m["doubleSided"] = true;
+                        {"pbrMetallicRoughness",
+                         {{"baseColorTexture", {{"index", i}}}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}}};
+    if (t.kind == TexKind::Fence || t.kind == TexKind::Tree)
+      m["alphaMode"] = "MASK", m["alphaCutoff"] = 0.5, m["doubleSided"] = true;
     if (t.kind == TexKind::Glass) m["alphaMode"] = "BLEND", m["doubleSided"] = true;
     materials.push_back(m);
     textures.push_back({{"source", i}, {"sampler", 0}});
@@ -172,17 +190,19 @@ void writeScene(const Scene& scene, const CityOptions& o, CitySummary& s) {
   const std::string binName = scene.name + ".bin";
   const size_t binSize = pos.size() + uv.size() + idx.size();
   nlohmann::json root = {
-      {"asset", {{"version", "2.0"},
-                 {"generator", fmt::format("tessera city --preset {} --buildings {} --seed {} --texture-size {} --format {}",
-                                           scene.name, scene.buildings, o.seed, o.textureSize, jpg ? "jpg" : "png")}}},
+      {"asset",
+       {{"version", "2.0"},
+        {"generator", fmt::format("tessera city --preset {} --buildings {} --seed {} --texture-size {} --format {}",
+                                  scene.name, scene.buildings, o.seed, o.textureSize, jpg ? "jpg" : "png")}}},
       {"scene", 0},
       {"scenes", {{{"name", scene.name}, {"nodes", scene.roots}}}},
       {"nodes", nodes},
       {"meshes", meshes},
       {"accessors", accessors},
-      {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", pos.size()}, {"byteStride", 12}, {"target", 34962}},
-                       {{"buffer", 0}, {"byteOffset", pos.size()}, {"byteLength", uv.size()}, {"byteStride", 8}, {"target", 34962}},
-                       {{"buffer", 0}, {"byteOffset", pos.size() + uv.size()}, {"byteLength", idx.size()}, {"target", 34963}}}},
+      {"bufferViews",
+       {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", pos.size()}, {"byteStride", 12}, {"target", 34962}},
+        {{"buffer", 0}, {"byteOffset", pos.size()}, {"byteLength", uv.size()}, {"byteStride", 8}, {"target", 34962}},
+        {{"buffer", 0}, {"byteOffset", pos.size() + uv.size()}, {"byteLength", idx.size()}, {"target", 34963}}}},
       {"buffers", {{{"uri", binName}, {"byteLength", binSize}}}},
       {"materials", materials},
       {"textures", textures},

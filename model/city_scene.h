@@ -17,8 +17,8 @@ enum class TexKind : uint8_t { BerlinFacade, Street, Facade, Roof, Detail, Pavem
 struct TexSpec {
   TexKind kind = TexKind::Facade;
   uint32_t width = 0, height = 0;
-  uint64_t seed = 0;    // everything about the pixels follows from it
-  uint32_t label = 0;   // the number drawn on Berlin facades
+  uint64_t seed = 0;   // everything about the pixels follows from it
+  uint32_t label = 0;  // the number drawn on Berlin facades
   bool rgba() const { return kind == TexKind::Fence || kind == TexKind::Tree || kind == TexKind::Glass; }
 };
 
@@ -38,7 +38,7 @@ struct Primitive {
 struct Node {
   std::string name;
   std::array<double, 3> translation{0, 0, 0};
-  double yaw = 0.0;  // rotation about +Y in radians, written as a quaternion (detSin / detCos)
+  double yaw = 0.0;                   // rotation about +Y in radians, written as a quaternion (detSin / detCos)
   std::vector<Primitive> primitives;  // the node's mesh (empty = no mesh)
   std::vector<uint32_t> children;
 };

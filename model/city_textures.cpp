@@ -34,8 +34,9 @@ Rgba shade(Rgba c, int d) { return {clamp8(c[0] + d), clamp8(c[1] + d), clamp8(c
 Rgba pick(const Rgba* palette, size_t n, uint32_t r) { return palette[r % n]; }
 
 // 3x5 digits, one row per 3 bits (MSB = left), rows top to bottom.
-constexpr uint8_t kDigits[10][5] = {{7, 5, 5, 5, 7}, {2, 6, 2, 2, 7}, {7, 1, 7, 4, 7}, {7, 1, 7, 1, 7}, {5, 5, 7, 1, 1},
-                                    {7, 4, 7, 1, 7}, {7, 4, 7, 5, 7}, {7, 1, 1, 1, 1}, {7, 5, 7, 5, 7}, {7, 5, 7, 1, 7}};
+constexpr uint8_t kDigits[10][5] = {{7, 5, 5, 5, 7}, {2, 6, 2, 2, 7}, {7, 1, 7, 4, 7}, {7, 1, 7, 1, 7},
+                                    {5, 5, 7, 1, 1}, {7, 4, 7, 1, 7}, {7, 4, 7, 5, 7}, {7, 1, 1, 1, 1},
+                                    {7, 5, 7, 5, 7}, {7, 5, 7, 1, 7}};
 
 // Draws `number` in digits of cell size `s` with the top-left corner at (x, y).
 void drawNumber(Canvas& c, int64_t x, int64_t y, int64_t s, uint32_t number, Rgba ink) {
@@ -44,7 +45,9 @@ void drawNumber(Canvas& c, int64_t x, int64_t y, int64_t s, uint32_t number, Rgb
     const uint8_t* g = kDigits[digits[i] - '0'];
     for (int row = 0; row < 5; ++row)
       for (int col = 0; col < 3; ++col)
-        if (g[row] >> (2 - col) & 1) c.rect(x + (int64_t(i) * 4 + col) * s, y + row * s, x + (int64_t(i) * 4 + col + 1) * s, y + (row + 1) * s, ink);
+        if (g[row] >> (2 - col) & 1)
+          c.rect(x + (int64_t(i) * 4 + col) * s, y + row * s, x + (int64_t(i) * 4 + col + 1) * s, y + (row + 1) * s,
+                 ink);
   }
 }
 
@@ -63,22 +66,25 @@ void berlinFacade(Canvas& c, const TexSpec& t) {
     for (int64_t x = 0; x < W; ++x) {
       const int64_t col = (x + off) / bw;
       const bool mortar = y % bh == 0 || (x + off) % bw == 0;
-      c.set(uint32_t(x), uint32_t(y), mortar ? shade(wall, -30) : shade(wall, int(hash(t.seed, 2, uint64_t(row * 4096 + col)) % 13) - 6));
+      c.set(uint32_t(x), uint32_t(y),
+            mortar ? shade(wall, -30) : shade(wall, int(hash(t.seed, 2, uint64_t(row * 4096 + col)) % 13) - 6));
     }
   }
   const int64_t cw = W / 4, chh = H / 4;
   const Rgba frame = hash(t.seed, 3) & 1 ? Rgba{240, 240, 235, 255} : Rgba{60, 50, 45, 255};
   for (int fy = 0; fy < 4; ++fy)
     for (int fx = 0; fx < 4; ++fx) {
-      const int64_t x0 = fx * cw + cw / 4, x1 = fx * cw + 3 * cw / 4, y0 = fy * chh + chh / 5, y1 = fy * chh + 3 * chh / 4;
+      const int64_t x0 = fx * cw + cw / 4, x1 = fx * cw + 3 * cw / 4, y0 = fy * chh + chh / 5,
+                    y1 = fy * chh + 3 * chh / 4;
       c.rect(x0 - u, y0 - u, x1 + u, y1 + u, frame);
       const bool lit = hash(t.seed, 4, uint64_t(fy * 4 + fx)) % 3 == 0;
       for (int64_t y = y0; y < y1; ++y) {
         const int g = int((y - y0) * 40 / std::max<int64_t>(y1 - y0, 1));
-        c.rect(x0, y, x1, y + 1, lit ? Rgba{clamp8(250 - g), clamp8(220 - g), 140, 255} : Rgba{40, clamp8(60 + g), clamp8(90 + g), 255});
+        c.rect(x0, y, x1, y + 1,
+               lit ? Rgba{clamp8(250 - g), clamp8(220 - g), 140, 255} : Rgba{40, clamp8(60 + g), clamp8(90 + g), 255});
       }
       c.rect((x0 + x1) / 2 - u / 2, y0, (x0 + x1) / 2 + (u + 1) / 2, y1, frame);  // mullion
-      c.rect(x0 - 2 * u, y1 + u, x1 + 2 * u, y1 + 3 * u, shade(wall, -50));      // sill
+      c.rect(x0 - 2 * u, y1 + u, x1 + 2 * u, y1 + 3 * u, shade(wall, -50));       // sill
     }
   // The plaque: the thesis made 10,000 textures out of 300 photographs by numbering them.
   // It sits in the wall between the third and fourth floor's windows, centred on the second column.
@@ -95,7 +101,8 @@ void street(Canvas& c, const TexSpec& t) {
     for (int64_t x = 0; x < W; ++x) {
       const bool road = x >= lot || y >= lot;
       const Rgba base = road ? Rgba{70, 70, 75, 255} : Rgba{170, 168, 160, 255};
-      c.set(uint32_t(x), uint32_t(y), shade(base, int(hash(t.seed, uint64_t(x / (2 * unit)), uint64_t(y / (2 * unit))) % 9) - 4));
+      c.set(uint32_t(x), uint32_t(y),
+            shade(base, int(hash(t.seed, uint64_t(x / (2 * unit)), uint64_t(y / (2 * unit))) % 9) - 4));
     }
   const int64_t mid = lot + (W - lot) / 2;
   for (int64_t k = 0; k < W; k += 4 * unit) {
@@ -129,12 +136,14 @@ void roof(Canvas& c, const TexSpec& t) {
     for (int64_t x = 0; x < W; ++x) {
       const int64_t row = y / th, off = (row & 1) * tw / 2, col = (x + off) / tw;
       const int edge = (y % th) * 40 / th;  // tiles darken toward their lower edge
-      c.set(uint32_t(x), uint32_t(y), shade(base, int(hash(t.seed, uint64_t(row), uint64_t(col)) % 21) - 10 - edge / 2));
+      c.set(uint32_t(x), uint32_t(y),
+            shade(base, int(hash(t.seed, uint64_t(row), uint64_t(col)) % 21) - 10 - edge / 2));
     }
 }
 
 void detail(Canvas& c, const TexSpec& t) {
-  const Rgba a = pick(kPlaster, std::size(kPlaster), hash(t.seed, 1)), b = pick(kPlaster, std::size(kPlaster), hash(t.seed, 2) + 5);
+  const Rgba a = pick(kPlaster, std::size(kPlaster), hash(t.seed, 1)),
+             b = pick(kPlaster, std::size(kPlaster), hash(t.seed, 2) + 5);
   const int64_t W = c.w, H = c.h, stripes = 2 + hash(t.seed, 3) % 6, u = std::max<int64_t>(std::min(W, H) / 32, 1);
   for (int64_t x = 0; x < W; ++x) c.rect(x, 0, x + 1, H, (x * stripes / W) % 2 ? a : b);
   c.rect(u, u, W - u, 2 * u, shade(a, -70));
@@ -144,18 +153,21 @@ void detail(Canvas& c, const TexSpec& t) {
 void pavement(Canvas& c, const TexSpec& t) {
   constexpr Rgba kStone[] = {{160, 155, 150, 255}, {180, 170, 150, 255}, {140, 130, 125, 255}, {190, 120, 100, 255}};
   const Rgba base = pick(kStone, std::size(kStone), hash(t.seed, 1));
-  const int64_t W = c.w, H = c.h, n = 2 + hash(t.seed, 2) % 3, tw = std::max<int64_t>(W / n, 1), th = std::max<int64_t>(H / n, 1);
+  const int64_t W = c.w, H = c.h, n = 2 + hash(t.seed, 2) % 3, tw = std::max<int64_t>(W / n, 1),
+                th = std::max<int64_t>(H / n, 1);
   const int64_t g = std::max<int64_t>(std::min(W, H) / 64, 1);
   for (int64_t y = 0; y < H; ++y)
     for (int64_t x = 0; x < W; ++x) {
       const bool grout = x % tw < g || y % th < g;
-      c.set(uint32_t(x), uint32_t(y), grout ? shade(base, -60) : shade(base, int(hash(t.seed, uint64_t(x / tw), uint64_t(y / th)) % 25) - 12));
+      c.set(uint32_t(x), uint32_t(y),
+            grout ? shade(base, -60) : shade(base, int(hash(t.seed, uint64_t(x / tw), uint64_t(y / th)) % 25) - 12));
     }
 }
 
 void fence(Canvas& c, const TexSpec& t) {  // RGBA: bars and rails opaque, gaps transparent
   const Rgba metal = hash(t.seed, 1) & 1 ? Rgba{40, 45, 40, 255} : Rgba{120, 90, 60, 255};
-  const int64_t W = c.w, H = c.h, bars = 4 + hash(t.seed, 2) % 8, bw = std::max<int64_t>(W / bars / 3, 1), rail = std::max<int64_t>(H / 16, 1);
+  const int64_t W = c.w, H = c.h, bars = 4 + hash(t.seed, 2) % 8, bw = std::max<int64_t>(W / bars / 3, 1),
+                rail = std::max<int64_t>(H / 16, 1);
   for (int64_t k = 0; k < bars; ++k) c.rect(k * W / bars, H / 8, k * W / bars + bw, H, metal);
   c.rect(0, H / 6, W, H / 6 + rail, metal);
   c.rect(0, H * 5 / 6, W, H * 5 / 6 + rail, metal);
@@ -191,15 +203,33 @@ void glass(Canvas& c, const TexSpec& t) {  // RGBA: translucent panes (BLEND) in
 std::vector<uint8_t> renderTexture(const TexSpec& t) {
   Canvas c(t.width, t.height, t.rgba() ? 4 : 3);
   switch (t.kind) {
-    case TexKind::BerlinFacade: berlinFacade(c, t); break;
-    case TexKind::Street: street(c, t); break;
-    case TexKind::Facade: facade(c, t); break;
-    case TexKind::Roof: roof(c, t); break;
-    case TexKind::Detail: detail(c, t); break;
-    case TexKind::Pavement: pavement(c, t); break;
-    case TexKind::Fence: fence(c, t); break;
-    case TexKind::Tree: tree(c, t); break;
-    case TexKind::Glass: glass(c, t); break;
+    case TexKind::BerlinFacade:
+      berlinFacade(c, t);
+      break;
+    case TexKind::Street:
+      street(c, t);
+      break;
+    case TexKind::Facade:
+      facade(c, t);
+      break;
+    case TexKind::Roof:
+      roof(c, t);
+      break;
+    case TexKind::Detail:
+      detail(c, t);
+      break;
+    case TexKind::Pavement:
+      pavement(c, t);
+      break;
+    case TexKind::Fence:
+      fence(c, t);
+      break;
+    case TexKind::Tree:
+      tree(c, t);
+      break;
+    case TexKind::Glass:
+      glass(c, t);
+      break;
   }
   return std::move(c.px);
 }

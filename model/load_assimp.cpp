@@ -6,11 +6,11 @@
 // diffuse (or glTF base colour) texture of each material is its base colour texture; textures
 // Assimp embeds ("*N") are kept in memory, external ones are resolved beside the model file and
 // checked to exist. Assimp stores v up; it is flipped to the glTF convention (v' = 1 - v).
-#include <assimp/Importer.hpp>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <assimp/Importer.hpp>
 #include <filesystem>
 #include <map>
 
@@ -67,9 +67,9 @@ class AssimpBuilder {
     int twoSided = 0;
     if (am.Get(AI_MATKEY_TWOSIDED, twoSided) == AI_SUCCESS) m.doubleSided = twoSided != 0;
     UvChannel uv;
-    const aiTextureType type = am.GetTextureCount(aiTextureType_DIFFUSE) ? aiTextureType_DIFFUSE
+    const aiTextureType type = am.GetTextureCount(aiTextureType_DIFFUSE)      ? aiTextureType_DIFFUSE
                                : am.GetTextureCount(aiTextureType_BASE_COLOR) ? aiTextureType_BASE_COLOR
-                                                                               : aiTextureType_NONE;
+                                                                              : aiTextureType_NONE;
     if (type != aiTextureType_NONE) {
       aiString texPath;
       aiTextureMapMode modes[2] = {aiTextureMapMode_Wrap, aiTextureMapMode_Wrap};
@@ -79,10 +79,12 @@ class AssimpBuilder {
         m.wrapS = wrapOf(modes[0]), m.wrapT = wrapOf(modes[1]);
         uv.channel = uvIndex;
         if (am.Get(AI_MATKEY_UVTRANSFORM(type, 0), uv.uvt) == AI_SUCCESS &&
-            (uv.uvt.mScaling.x != 1 || uv.uvt.mScaling.y != 1 || uv.uvt.mTranslation.x != 0 || uv.uvt.mTranslation.y != 0)) {
+            (uv.uvt.mScaling.x != 1 || uv.uvt.mScaling.y != 1 || uv.uvt.mTranslation.x != 0 ||
+             uv.uvt.mTranslation.y != 0)) {
           uv.transform = true;
           if (uv.uvt.mRotation != 0)
-            out_.notes.push_back("material " + std::to_string(index) + ": UV rotation ignored (scale and offset applied)");
+            out_.notes.push_back("material " + std::to_string(index) +
+                                 ": UV rotation ignored (scale and offset applied)");
         }
       }
     }
@@ -134,7 +136,8 @@ class AssimpBuilder {
     if (depth > 1000) throw Error(path_ + ": the node hierarchy is deeper than 1000 levels");
     const Transform world = parent * toTransform(n.mTransformation);
     for (unsigned i = 0; i < n.mNumMeshes; ++i) {
-      if (n.mMeshes[i] >= sc_.mNumMeshes) throw Error(path_ + ": node '" + std::string(n.mName.C_Str()) + "' names a missing mesh");
+      if (n.mMeshes[i] >= sc_.mNumMeshes)
+        throw Error(path_ + ": node '" + std::string(n.mName.C_Str()) + "' names a missing mesh");
       mesh(*sc_.mMeshes[n.mMeshes[i]], world);
     }
     for (unsigned i = 0; i < n.mNumChildren; ++i) node(*n.mChildren[i], world, depth + 1);

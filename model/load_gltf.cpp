@@ -13,10 +13,10 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 
-#include <nlohmann/json.hpp>
-
+#include "model/gltf_accessors.h"
 #include "model/loaders.h"
 #include "raster/command_list.h"
 #include "tools/scenes/builder.h"
@@ -26,6 +26,9 @@ namespace tessera::model::detail {
 namespace {
 
 namespace fs = std::filesystem;
+using gltf::fail;
+using gltf::le32;
+using gltf::Reader;
 
 std::vector<uint8_t> readWholeFile(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
@@ -37,8 +40,6 @@ std::vector<uint8_t> readWholeFile(const std::string& path) {
   if (!bytes.empty() && !f.read(reinterpret_cast<char*>(bytes.data()), n)) throw Error(path + ": read failed");
   return bytes;
 }
-
-uint32_t le32(const uint8_t* p) { return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24; }
 
 std::string canonical(const std::string& p) {
   std::error_code ec;
@@ -85,176 +86,6 @@ bool stashImage(tinygltf::Image* image, const int index, std::string*, std::stri
   return true;
 }
 
-[[noreturn]] void fail(const std::string& path, const std::string& pointer, const std::string& why) {
-  throw Error(path + ": " + pointer + ": " + why);
-}
-
-int componentCount(int type) {
-  switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return 1;
-    case TINYGLTF_TYPE_VEC2: return 2;
-    case TINYGLTF_TYPE_VEC3: return 3;
-    case TINYGLTF_TYPE_VEC4: return 4;
-    default: return 0;
-  }
-}
-int componentBytes(int ct) {
-  switch (ct) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-    default: return 0;
-  }
-}
-
-// One component at p as float: floats bit-exactly, normalized integers per glTF 2.0 §3.11,
-// unnormalized integers by value (KHR_mesh_quantization).
-float readComponent(const uint8_t* p, int ct, bool normalized) {
-  switch (ct) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
-      float f;
-      std::memcpy(&f, p, 4);
-      return f;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? float(p[0]) / 255.0f : float(p[0]);
-    case TINYGLTF_COMPONENT_TYPE_BYTE: {
-      const int8_t v = int8_t(p[0]);
-      return normalized ? std::max(float(v) / 127.0f, -1.0f) : float(v);
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-      uint16_t v;
-      std::memcpy(&v, p, 2);
-      return normalized ? float(v) / 65535.0f : float(v);
-    }
-    case TINYGLTF_COMPONENT_TYPE_SHORT: {
-      int16_t v;
-      std::memcpy(&v, p, 2);
-      return normalized ? std::max(float(v) / 32767.0f, -1.0f) : float(v);
-    }
-    default: {  // UNSIGNED_INT
-      uint32_t v;
-      std::memcpy(&v, p, 4);
-      return float(v);
-    }
-  }
-}
-
-class Reader {
- public:
-  Reader(const std::string& path, const tinygltf::Model& m) : path_(path), m_(m) {}
-
-  // Validates that `count` elements of `elemBytes` at byteOffset with the view's stride lie inside
-  // the view and the view inside its buffer; returns the first element and the stride.
-  std::pair<const uint8_t*, size_t> locate(const std::string& ptr, int view, size_t byteOffset, size_t count,
-                                           size_t elemBytes, bool allowStride) const {
-    if (view < 0 || size_t(view) >= m_.bufferViews.size())
-      fail(path_, ptr + "/bufferView", std::to_string(view) + " is not a bufferView index");
-    const tinygltf::BufferView& bv = m_.bufferViews[size_t(view)];
-    const std::string vptr = "/bufferViews/" + std::to_string(view);
-    if (bv.buffer < 0 || size_t(bv.buffer) >= m_.buffers.size())
-      fail(path_, vptr + "/buffer", std::to_string(bv.buffer) + " is not a buffer index");
-    const auto& data = m_.buffers[size_t(bv.buffer)].data;
-    if (bv.byteOffset > data.size() || bv.byteLength > data.size() - bv.byteOffset)
-      fail(path_, vptr, "byte range [" + std::to_string(bv.byteOffset) + ", +" + std::to_string(bv.byteLength) +
-                            ") lies outside buffer " + std::to_string(bv.buffer) + " (" +
-                            std::to_string(data.size()) + " bytes)");
-    const size_t stride = allowStride && bv.byteStride ? bv.byteStride : elemBytes;
-    if (stride < elemBytes) fail(path_, vptr + "/byteStride", "smaller than the element (" + std::to_string(elemBytes) + " bytes)");
-    if (count) {
-      const unsigned __int128 end = (unsigned __int128)byteOffset + (unsigned __int128)stride * (count - 1) + elemBytes;
-      if (end > bv.byteLength)
-        fail(path_, ptr, std::to_string(count) + " elements from byteOffset " + std::to_string(byteOffset) +
-                             " overrun bufferView " + std::to_string(view) + " (" + std::to_string(bv.byteLength) +
-                             " bytes)");
-    }
-    return {data.data() + bv.byteOffset + byteOffset, stride};
-  }
-
-  const tinygltf::Accessor& accessor(int index, const std::string& from) const {
-    if (index < 0 || size_t(index) >= m_.accessors.size())
-      fail(path_, from, std::to_string(index) + " is not an accessor index");
-    return m_.accessors[size_t(index)];
-  }
-
-  // Every component of accessor `index` as float, `count * comps` values; the accessor's type must
-  // have `comps` components. Sparse substitution applied.
-  std::vector<float> floats(int index, int comps, const std::string& from) const {
-    const tinygltf::Accessor& a = accessor(index, from);
-    const std::string ptr = "/accessors/" + std::to_string(index);
-    if (componentCount(a.type) != comps)
-      fail(path_, ptr + "/type", "expected " + std::to_string(comps) + " components for " + from);
-    const int cb = componentBytes(a.componentType);
-    if (!cb) fail(path_, ptr + "/componentType", std::to_string(a.componentType) + " is not a component type");
-    std::vector<float> out(a.count * size_t(comps), 0.0f);
-    if (a.bufferView >= 0) {
-      auto [p, stride] = locate(ptr, a.bufferView, a.byteOffset, a.count, size_t(cb) * comps, true);
-      for (size_t i = 0; i < a.count; ++i)
-        for (int c = 0; c < comps; ++c) out[i * comps + c] = readComponent(p + i * stride + c * cb, a.componentType, a.normalized);
-    }
-    if (a.sparse.isSparse) {
-      const std::vector<uint32_t> which = sparseIndices(a, ptr);
-      auto [vp, vstride] = locate(ptr + "/sparse/values", a.sparse.values.bufferView, a.sparse.values.byteOffset,
-                                  which.size(), size_t(cb) * comps, false);
-      for (size_t k = 0; k < which.size(); ++k)
-        for (int c = 0; c < comps; ++c)
-          out[size_t(which[k]) * comps + c] = readComponent(vp + k * vstride + c * cb, a.componentType, a.normalized);
-    }
-    return out;
-  }
-
-  std::vector<uint32_t> indices(int index, const std::string& from) const {
-    const tinygltf::Accessor& a = accessor(index, from);
-    const std::string ptr = "/accessors/" + std::to_string(index);
-    if (a.type != TINYGLTF_TYPE_SCALAR) fail(path_, ptr + "/type", "indices must be SCALAR");
-    const int ct = a.componentType;
-    if (ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-        ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-      fail(path_, ptr + "/componentType", "indices must be an unsigned integer type");
-    std::vector<uint32_t> out(a.count, 0);
-    if (a.bufferView >= 0) {
-      auto [p, stride] = locate(ptr, a.bufferView, a.byteOffset, a.count, size_t(componentBytes(ct)), true);
-      for (size_t i = 0; i < a.count; ++i) out[i] = readUint(p + i * stride, ct);
-    }
-    if (a.sparse.isSparse) {
-      const std::vector<uint32_t> which = sparseIndices(a, ptr);
-      auto [vp, vstride] = locate(ptr + "/sparse/values", a.sparse.values.bufferView, a.sparse.values.byteOffset,
-                                  which.size(), size_t(componentBytes(ct)), false);
-      for (size_t k = 0; k < which.size(); ++k) out[which[k]] = readUint(vp + k * vstride, ct);
-    }
-    return out;
-  }
-
-  size_t count(int index, const std::string& from) const { return accessor(index, from).count; }
-
- private:
-  static uint32_t readUint(const uint8_t* p, int ct) {
-    if (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) return p[0];
-    if (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) return uint32_t(p[0]) | uint32_t(p[1]) << 8;
-    return le32(p);
-  }
-  std::vector<uint32_t> sparseIndices(const tinygltf::Accessor& a, const std::string& ptr) const {
-    const int ct = a.sparse.indices.componentType;
-    const int cb = componentBytes(ct);
-    if (!cb || ct == TINYGLTF_COMPONENT_TYPE_FLOAT || ct == TINYGLTF_COMPONENT_TYPE_BYTE || ct == TINYGLTF_COMPONENT_TYPE_SHORT)
-      fail(path_, ptr + "/sparse/indices/componentType", "must be an unsigned integer type");
-    if (a.sparse.count < 0) fail(path_, ptr + "/sparse/count", "negative");
-    auto [p, stride] = locate(ptr + "/sparse/indices", a.sparse.indices.bufferView, a.sparse.indices.byteOffset,
-                              size_t(a.sparse.count), size_t(cb), false);
-    std::vector<uint32_t> which(size_t(a.sparse.count));
-    for (size_t k = 0; k < which.size(); ++k) {
-      which[k] = readUint(p + k * stride, ct);
-      if (which[k] >= a.count)
-        fail(path_, ptr + "/sparse/indices", "index " + std::to_string(which[k]) + " >= count " + std::to_string(a.count));
-    }
-    return which;
-  }
-  const std::string& path_;
-  const tinygltf::Model& m_;
-};
-
 // The texcoord set and KHR_texture_transform of one material's base colour texture.
 struct UvSource {
   int set = 0;
@@ -280,8 +111,12 @@ UvSource uvSource(const std::string& path, const nlohmann::json& root, size_t ma
   const std::string tptr = ptr + "/extensions/KHR_texture_transform";
   s.transform = true;
   for (int k = 0; k < 2; ++k) {
-    if (t.contains("offset")) s.offset[k] = number(path, t["offset"].is_array() && t["offset"].size() == 2 ? t["offset"][k] : nlohmann::json(), tptr + "/offset");
-    if (t.contains("scale")) s.scale[k] = number(path, t["scale"].is_array() && t["scale"].size() == 2 ? t["scale"][k] : nlohmann::json(), tptr + "/scale");
+    if (t.contains("offset"))
+      s.offset[k] = number(path, t["offset"].is_array() && t["offset"].size() == 2 ? t["offset"][k] : nlohmann::json(),
+                           tptr + "/offset");
+    if (t.contains("scale"))
+      s.scale[k] = number(path, t["scale"].is_array() && t["scale"].size() == 2 ? t["scale"][k] : nlohmann::json(),
+                          tptr + "/scale");
   }
   if (t.contains("rotation")) s.rotation = number(path, t["rotation"], tptr + "/rotation");
   if (t.contains("texCoord")) s.set = int(number(path, t["texCoord"], tptr + "/texCoord"));
@@ -302,9 +137,12 @@ Transform nodeTransform(const tinygltf::Node& n) {
   }
   // T * R * S, glTF 2.0 §3.5.3; the quaternion is used as stored (no trigonometry).
   double q[4] = {0, 0, 0, 1}, s[3] = {1, 1, 1}, tr[3] = {0, 0, 0};
-  if (n.rotation.size() == 4) for (int i = 0; i < 4; ++i) q[i] = n.rotation[i];
-  if (n.scale.size() == 3) for (int i = 0; i < 3; ++i) s[i] = n.scale[i];
-  if (n.translation.size() == 3) for (int i = 0; i < 3; ++i) tr[i] = n.translation[i];
+  if (n.rotation.size() == 4)
+    for (int i = 0; i < 4; ++i) q[i] = n.rotation[i];
+  if (n.scale.size() == 3)
+    for (int i = 0; i < 3; ++i) s[i] = n.scale[i];
+  if (n.translation.size() == 3)
+    for (int i = 0; i < 3; ++i) tr[i] = n.translation[i];
   const double x = q[0], y = q[1], z = q[2], w = q[3];
   const double r[9] = {1 - 2 * (y * y + z * z), 2 * (x * y + z * w),     2 * (x * z - y * w),
                        2 * (x * y - z * w),     1 - 2 * (x * x + z * z), 2 * (y * z + x * w),
@@ -347,8 +185,11 @@ class Builder {
       Material mat;
       mat.name = gm.name;
       const auto& f = gm.pbrMetallicRoughness.baseColorFactor;
-      if (f.size() == 4) for (int k = 0; k < 4; ++k) mat.baseColorFactor[size_t(k)] = float(f[size_t(k)]);
-      mat.alphaMode = gm.alphaMode == "MASK" ? AlphaMode::Mask : gm.alphaMode == "BLEND" ? AlphaMode::Blend : AlphaMode::Opaque;
+      if (f.size() == 4)
+        for (int k = 0; k < 4; ++k) mat.baseColorFactor[size_t(k)] = float(f[size_t(k)]);
+      mat.alphaMode = gm.alphaMode == "MASK"    ? AlphaMode::Mask
+                      : gm.alphaMode == "BLEND" ? AlphaMode::Blend
+                                                : AlphaMode::Opaque;
       mat.alphaCutoff = float(gm.alphaCutoff);
       mat.doubleSided = gm.doubleSided;
       const int ti = gm.pbrMetallicRoughness.baseColorTexture.index;
@@ -357,11 +198,13 @@ class Builder {
         if (size_t(ti) >= m_.textures.size()) fail(path_, ptr, std::to_string(ti) + " is not a texture index");
         const tinygltf::Texture& t = m_.textures[size_t(ti)];
         if (t.source < 0 || size_t(t.source) >= m_.images.size())
-          fail(path_, "/textures/" + std::to_string(ti) + "/source", std::to_string(t.source) + " is not an image index");
+          fail(path_, "/textures/" + std::to_string(ti) + "/source",
+               std::to_string(t.source) + " is not an image index");
         mat.baseColorTexture = t.source;
         if (t.sampler >= 0) {
           if (size_t(t.sampler) >= m_.samplers.size())
-            fail(path_, "/textures/" + std::to_string(ti) + "/sampler", std::to_string(t.sampler) + " is not a sampler index");
+            fail(path_, "/textures/" + std::to_string(ti) + "/sampler",
+                 std::to_string(t.sampler) + " is not a sampler index");
           mat.wrapS = wrapOf(m_.samplers[size_t(t.sampler)].wrapS);
           mat.wrapT = wrapOf(m_.samplers[size_t(t.sampler)].wrapT);
         }
@@ -381,14 +224,16 @@ class Builder {
   }
 
   void node(int index, const Transform& parent, std::vector<bool>& onPath, const std::string& from) {
-    if (index < 0 || size_t(index) >= m_.nodes.size()) fail(path_, from, std::to_string(index) + " is not a node index");
+    if (index < 0 || size_t(index) >= m_.nodes.size())
+      fail(path_, from, std::to_string(index) + " is not a node index");
     if (onPath[size_t(index)]) fail(path_, "/nodes/" + std::to_string(index), "the node hierarchy has a cycle");
     onPath[size_t(index)] = true;
     const tinygltf::Node& n = m_.nodes[size_t(index)];
     const Transform world = parent * nodeTransform(n);
     const std::string ptr = "/nodes/" + std::to_string(index);
     if (n.mesh >= 0) {
-      if (size_t(n.mesh) >= m_.meshes.size()) fail(path_, ptr + "/mesh", std::to_string(n.mesh) + " is not a mesh index");
+      if (size_t(n.mesh) >= m_.meshes.size())
+        fail(path_, ptr + "/mesh", std::to_string(n.mesh) + " is not a mesh index");
       const tinygltf::Mesh& gm = m_.meshes[size_t(n.mesh)];
       for (size_t p = 0; p < gm.primitives.size(); ++p)
         primitive(gm.primitives[p], "/meshes/" + std::to_string(n.mesh) + "/primitives/" + std::to_string(p),
@@ -398,11 +243,13 @@ class Builder {
     onPath[size_t(index)] = false;
   }
 
-  void primitive(const tinygltf::Primitive& prim, const std::string& ptr, const std::string& name, const Transform& world) {
+  void primitive(const tinygltf::Primitive& prim, const std::string& ptr, const std::string& name,
+                 const Transform& world) {
     const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
     if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
       ++skippedNonTriangles_;
-      if (skippedNonTriangles_ == 1) out_.notes.push_back(ptr + ": points / lines primitives are not triangles; skipped");
+      if (skippedNonTriangles_ == 1)
+        out_.notes.push_back(ptr + ": points / lines primitives are not triangles; skipped");
       return;
     }
     const auto pos = prim.attributes.find("POSITION");
@@ -434,8 +281,11 @@ class Builder {
       if (reader_.count(tc->second, tptr) != nv) fail(path_, tptr, "count differs from POSITION's");
       const std::vector<float> t = reader_.floats(tc->second, 2, tptr);
       mesh.texcoords.resize(nv);
-      // KHR_texture_transform: uv' = T * R * S * uv with R = [cos sin; -sin cos] (the extension's matrix).
-      const double c = uv.transform ? scenes::detCos(uv.rotation) : 1.0, s = uv.transform ? scenes::detSin(uv.rotation) : 0.0;
+      // KHR_texture_transform: uv' = offset + R * (scale * uv) with u' = cos u + sin v, v' = -sin u + cos v: the
+      // reading under which the extension's own example (offset [0, 1], rotation pi/2, scale 0.5) selects the
+      // lower-left quadrant, as the reference viewers and the TextureTransformTest sample model do.
+      const double c = uv.transform ? scenes::detCos(uv.rotation) : 1.0,
+                   s = uv.transform ? scenes::detSin(uv.rotation) : 0.0;
       for (size_t i = 0; i < nv; ++i) {
         if (!uv.transform) {
           mesh.texcoords[i] = {t[i * 2], t[i * 2 + 1]};
@@ -445,7 +295,8 @@ class Builder {
         mesh.texcoords[i] = {float(c * u + s * v + uv.offset[0]), float(-s * u + c * v + uv.offset[1])};
       }
     } else if (out_.materials[mesh.material].baseColorTexture >= 0) {
-      out_.notes.push_back(ptr + ": textured material but no TEXCOORD_" + std::to_string(uv.set) + "; texcoords left empty");
+      out_.notes.push_back(ptr + ": textured material but no TEXCOORD_" + std::to_string(uv.set) +
+                           "; texcoords left empty");
     }
     const auto nrm = prim.attributes.find("NORMAL");
     if (nrm != prim.attributes.end() && reader_.count(nrm->second, ptr + "/attributes/NORMAL") == nv) {
@@ -460,7 +311,8 @@ class Builder {
     if (prim.indices >= 0) {
       idx = reader_.indices(prim.indices, ptr + "/indices");
       for (uint32_t i : idx)
-        if (i >= nv) fail(path_, ptr + "/indices", "index " + std::to_string(i) + " >= vertex count " + std::to_string(nv));
+        if (i >= nv)
+          fail(path_, ptr + "/indices", "index " + std::to_string(i) + " >= vertex count " + std::to_string(nv));
     } else {
       idx.resize(nv);
       for (size_t i = 0; i < nv; ++i) idx[i] = uint32_t(i);
@@ -505,7 +357,8 @@ Container parseContainer(const std::string& path, const std::vector<uint8_t>& by
     return c;
   }
   c.binary = true;
-  if (bytes.size() < 20) throw Error(path + ": truncated .glb: " + std::to_string(bytes.size()) + " bytes, the header needs 20");
+  if (bytes.size() < 20)
+    throw Error(path + ": truncated .glb: " + std::to_string(bytes.size()) + " bytes, the header needs 20");
   const uint32_t length = le32(&bytes[8]), jsonLen = le32(&bytes[12]);
   if (length > bytes.size())
     throw Error(path + ": truncated .glb: the header says " + std::to_string(length) + " bytes, the file has " +
@@ -544,7 +397,8 @@ Model loadGltf(const std::string& path) {
                                     : root.contains("meshes") && root["meshes"].is_object();
   if (v1) return loadAssimp(path);
   if (!root.contains(vp) || !root.at(vp).is_string()) fail(path, "/asset/version", "missing (required by glTF 2.0)");
-  if (!root.at(vp).get<std::string>().starts_with("2")) fail(path, "/asset/version", "'" + root.at(vp).get<std::string>() + "' is not 2.x");
+  if (!root.at(vp).get<std::string>().starts_with("2"))
+    fail(path, "/asset/version", "'" + root.at(vp).get<std::string>() + "' is not 2.x");
   if (root.contains("extensionsRequired") && root["extensionsRequired"].is_array())
     for (const auto& e : root["extensionsRequired"])
       if (e.is_string() && e != "KHR_texture_transform" && e != "KHR_mesh_quantization" && e != "KHR_materials_unlit")
@@ -554,7 +408,8 @@ Model loadGltf(const std::string& path) {
   const std::string base = fs::path(path).parent_path().string();
   if (root.contains("buffers") && root["buffers"].is_array())
     for (const auto& b : root["buffers"])
-      if (b.is_object() && b.contains("uri") && b["uri"].is_string() && !b["uri"].get<std::string>().starts_with("data:"))
+      if (b.is_object() && b.contains("uri") && b["uri"].is_string() &&
+          !b["uri"].get<std::string>().starts_with("data:"))
         ctx.bufferFiles.insert(canonical(resolveBeside(path, uriDecode(b["uri"].get<std::string>()))));
 
   tinygltf::TinyGLTF loader;
@@ -566,7 +421,8 @@ Model loadGltf(const std::string& path) {
                            : loader.LoadASCIIFromString(&gm, &err, &warn, c.json.data(), unsigned(c.json.size()), base);
   if (!ok) {
     while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
-    for (char& ch : err) if (ch == '\n') ch = ';';
+    for (char& ch : err)
+      if (ch == '\n') ch = ';';
     throw Error(path + ": " + (err.empty() ? "tinygltf could not parse the file" : err));
   }
 
@@ -596,8 +452,8 @@ Model loadGltf(const std::string& path) {
         t.offset = bv.byteOffset;
       } else {
         t.source = TextureRef::Source::Memory;
-        t.bytes = std::make_shared<const std::vector<uint8_t>>(buf.data.begin() + ptrdiff_t(bv.byteOffset),
-                                                               buf.data.begin() + ptrdiff_t(bv.byteOffset + bv.byteLength));
+        t.bytes = std::make_shared<const std::vector<uint8_t>>(
+            buf.data.begin() + ptrdiff_t(bv.byteOffset), buf.data.begin() + ptrdiff_t(bv.byteOffset + bv.byteLength));
       }
       t.size = bv.byteLength;
       if (t.name.empty()) t.name = "image" + std::to_string(i);

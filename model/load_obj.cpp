@@ -86,7 +86,8 @@ Model loadObj(const std::string& path) {
     size_t first = 0;
     for (size_t f = 0; f < sm.num_face_vertices.size(); ++f) {
       const size_t n = sm.num_face_vertices[f];
-      if (first + n > sm.indices.size()) throw Error(path + ": shape '" + shapes[s].name + "': face " + std::to_string(f) + " runs past the index list");
+      if (first + n > sm.indices.size())
+        throw Error(path + ": shape '" + shapes[s].name + "': face " + std::to_string(f) + " runs past the index list");
       int mat = f < sm.material_ids.size() ? sm.material_ids[f] : -1;
       if (mat < 0 || size_t(mat) >= out.materials.size()) {
         if (defaultMaterial < 0) {

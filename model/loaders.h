@@ -52,8 +52,8 @@ struct Transform {
   // determinant's scale is removed by normalizing) and normalizes it (sqrt is correctly rounded).
   Float3 normal(const Float3& n) const {
     const double a = m[0], b = m[4], c = m[8], d = m[1], e = m[5], f = m[9], g = m[2], h = m[6], i = m[10];
-    const double cof[9] = {e * i - f * h, -(d * i - f * g), d * h - e * g, -(b * i - c * h), a * i - c * g,
-                           -(a * h - b * g), b * f - c * e, -(a * f - c * d), a * e - b * d};
+    const double cof[9] = {e * i - f * h,    -(d * i - f * g), d * h - e * g,    -(b * i - c * h), a * i - c * g,
+                           -(a * h - b * g), b * f - c * e,    -(a * f - c * d), a * e - b * d};
     const double x = cof[0] * n.x + cof[1] * n.y + cof[2] * n.z;  // cof is row-major: C[r][c] = cof[r * 3 + c]
     const double y = cof[3] * n.x + cof[4] * n.y + cof[5] * n.z;
     const double z = cof[6] * n.x + cof[7] * n.y + cof[8] * n.z;

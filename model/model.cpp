@@ -81,9 +81,12 @@ Model loadModel(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   Model m;
-  if (std::memcmp(magic, "glTF", 4) == 0 || ext == ".gltf" || ext == ".glb") m = detail::loadGltf(path);
-  else if (ext == ".obj") m = detail::loadObj(path);
-  else m = detail::loadAssimp(path);
+  if (std::memcmp(magic, "glTF", 4) == 0 || ext == ".gltf" || ext == ".glb")
+    m = detail::loadGltf(path);
+  else if (ext == ".obj")
+    m = detail::loadObj(path);
+  else
+    m = detail::loadAssimp(path);
   m.source = path;
   for (const Mesh& mesh : m.meshes)
     for (const Float3& p : mesh.positions) m.bounds.add(p);
@@ -130,11 +133,15 @@ std::vector<uint8_t> readRange(const std::string& what, const std::string& path,
 
 // An open OIIO reader on the texture's bytes. Memory and file ranges go through an IOMemReader when
 // the format's plugin supports IOProxy; otherwise through a temporary file (removed on destruction).
+void requireIndex(const Model& m, size_t index) {
+  if (index >= m.textures.size())
+    throw Error(m.source + ": texture " + std::to_string(index) + " does not exist (" +
+                std::to_string(m.textures.size()) + " textures)");
+}
+
 class OpenTexture {
  public:
-  OpenTexture(const Model& m, size_t index) : what_(describe(m, index)) {
-    if (index >= m.textures.size())
-      throw Error(m.source + ": texture " + std::to_string(index) + " does not exist (" + std::to_string(m.textures.size()) + " textures)");
+  OpenTexture(const Model& m, size_t index) : what_((requireIndex(m, index), describe(m, index))) {
     const TextureRef& t = m.textures[index];
     config_.attribute("oiio:UnassociatedAlpha", 1);  // alpha as stored, colour not premultiplied
     if (t.source == TextureRef::Source::File) {
@@ -156,8 +163,9 @@ class OpenTexture {
       in_ = OIIO::ImageInput::open("memory." + ext, &config_, proxy_.get());
     } else {
       static std::atomic<uint64_t> counter{0};
-      temp_ = (fs::temp_directory_path() / ("tessera-texture-" + std::to_string(::getpid()) + "-" +
-                                            std::to_string(counter++) + "." + ext)).string();
+      temp_ = (fs::temp_directory_path() /
+               ("tessera-texture-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "." + ext))
+                  .string();
       std::ofstream f(temp_, std::ios::binary);
       f.write(reinterpret_cast<const char*>(data_), std::streamsize(size_));
       f.close();
@@ -187,7 +195,8 @@ class OpenTexture {
 }  // namespace
 
 Image loadTexture(const Model& model, size_t index) {
-  if (index < model.textures.size() && model.textures[index].rawRGBA) {
+  requireIndex(model, index);
+  if (model.textures[index].rawRGBA) {
     const TextureRef& t = model.textures[index];
     Image img{t.rawWidth, t.rawHeight, {}, 4, false};
     if (!t.bytes || t.bytes->size() != size_t(t.rawWidth) * t.rawHeight * 4)
@@ -200,8 +209,8 @@ Image loadTexture(const Model& model, size_t index) {
   const OIIO::ImageSpec spec = ot.in().spec();
   const int nc = spec.nchannels;
   if (spec.width <= 0 || spec.height <= 0 || nc <= 0 || spec.width > 65536 || spec.height > 65536)
-    throw Error(ot.what() + ": unsupported image size " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + "x" +
-                std::to_string(nc));
+    throw Error(ot.what() + ": unsupported image size " + std::to_string(spec.width) + "x" +
+                std::to_string(spec.height) + "x" + std::to_string(nc));
   Image img;
   img.width = uint32_t(spec.width), img.height = uint32_t(spec.height), img.fileChannels = nc;
   const size_t texels = size_t(img.width) * img.height;
@@ -225,8 +234,8 @@ Image loadTexture(const Model& model, size_t index) {
 }
 
 TextureInfo probeTexture(const Model& model, size_t index) {
-  if (index < model.textures.size() && model.textures[index].rawRGBA)
-    return {model.textures[index].rawWidth, model.textures[index].rawHeight, 4, "raw"};
+  requireIndex(model, index);
+  if (model.textures[index].rawRGBA) return {model.textures[index].rawWidth, model.textures[index].rawHeight, 4, "raw"};
   OpenTexture ot(model, index);
   const OIIO::ImageSpec& spec = ot.in().spec();
   return {uint32_t(std::max(spec.width, 0)), uint32_t(std::max(spec.height, 0)), spec.nchannels, ot.in().format_name()};

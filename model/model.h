@@ -51,7 +51,7 @@ enum class Wrap : uint8_t { Repeat, ClampToEdge, MirroredRepeat };
 
 struct Material {
   std::string name;
-  int32_t baseColorTexture = -1;  // index into Model::textures, -1 = untextured
+  int32_t baseColorTexture = -1;                                 // index into Model::textures, -1 = untextured
   std::array<float, 4> baseColorFactor{1.0f, 1.0f, 1.0f, 1.0f};  // multiplies the texture (linear)
   AlphaMode alphaMode = AlphaMode::Opaque;
   float alphaCutoff = 0.5f;  // Mask only
@@ -78,13 +78,13 @@ struct TextureRef {
     Memory,     // `bytes` (a data: URI, or an image Assimp embedded); `rawRGBA`: bytes are RGBA8 texels
   };
   Source source = Source::File;
-  std::string name;      // the image's name, or its file name
-  std::string uri;       // as the model file wrote it (for messages); empty for embedded images
-  std::string path;      // File / FileRange: the file to read
+  std::string name;  // the image's name, or its file name
+  std::string uri;   // as the model file wrote it (for messages); empty for embedded images
+  std::string path;  // File / FileRange: the file to read
   uint64_t offset = 0, size = 0;
   std::string mimeType;  // "image/png", "image/jpeg", ... when the model says; else guessed from bytes
   std::shared_ptr<const std::vector<uint8_t>> bytes;  // Memory only
-  bool rawRGBA = false;                                // Memory only: bytes are width x height RGBA8
+  bool rawRGBA = false;                               // Memory only: bytes are width x height RGBA8
   uint32_t rawWidth = 0, rawHeight = 0;
 };
 
@@ -104,7 +104,7 @@ struct Model {
 struct Image {
   uint32_t width = 0, height = 0;
   std::vector<uint8_t> rgba;
-  int fileChannels = 0;   // channels the file stores (1 grey, 2 grey+alpha, 3 RGB, 4 RGBA)
+  int fileChannels = 0;    // channels the file stores (1 grey, 2 grey+alpha, 3 RGB, 4 RGBA)
   bool usesAlpha = false;  // some texel has alpha < 255
 };
 
@@ -123,7 +123,8 @@ Model loadModel(const std::string& path);
 
 // Decodes texture `index` of `model` to RGBA8: grey is replicated, a missing alpha becomes 255,
 // 16-bit channels are rounded to 8 bits, alpha is read unassociated (as stored).
-// Throws Error naming the model, the texture index and its uri on failure.
+// Throws Error naming the model, the texture index and its uri on failure. loadTexture() and probeTexture()
+// may run concurrently on one Model: each call opens its own reader.
 Image loadTexture(const Model& model, size_t index);
 
 // The size and channel count of texture `index`, read from the image header only (OIIO's spec).

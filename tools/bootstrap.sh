@@ -8,7 +8,7 @@ PKGS=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri libopengl-dev libgles-dev
-  libtinygltf-dev libstb-dev libassimp-dev
+  libtinygltf-dev libtinyobjloader-dev libstb-dev libassimp-dev
 )
 missing=()
 for p in "${PKGS[@]}"; do

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cstring>
-
 #include <nlohmann/json.hpp>
 
 #include "model/model.h"
@@ -28,36 +27,55 @@ std::string writeFeatureGltf(const ScratchDir& dir) {
   testing::appendBytes(bin, std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0});         // 0: 48 bytes
   testing::appendBytes(bin, std::vector<uint16_t>{0, 0, 65535, 0, 0, 32768, 65535, 65535});  // 48: 16 bytes
   testing::appendBytes(bin, std::vector<float>{0, 0, 3000, 0, 3000, 2, 0, 2});               // 64: 32 bytes
-  testing::appendBytes(bin, std::vector<uint8_t>{0, 1, 3, 2});                                 // 96: 4 bytes
+  testing::appendBytes(bin, std::vector<uint8_t>{0, 1, 3, 2});                               // 96: 4 bytes
   nlohmann::json j = {
       {"asset", {{"version", "2.0"}}},
       {"extensionsUsed", {"KHR_texture_transform"}},
-      {"buffers", {{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + testing::base64(bin)}}}},
-      {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
-                       {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 16}},
-                       {{"buffer", 0}, {"byteOffset", 64}, {"byteLength", 32}},
-                       {{"buffer", 0}, {"byteOffset", 96}, {"byteLength", 4}}}},
-      {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}, {"min", {0, 0, 0}}, {"max", {1, 1, 0}}},
-                     {{"bufferView", 1}, {"componentType", 5123}, {"normalized", true}, {"count", 4}, {"type", "VEC2"}},
-                     {{"bufferView", 2}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
-                     {{"bufferView", 3}, {"componentType", 5121}, {"count", 4}, {"type", "SCALAR"}}}},
-      {"images", {{{"uri", "checker.png"}},
-                  {{"uri", "data:image/png;base64," + testing::base64(testing::readFile(dir / "embedded.png"))}}}},
+      {"buffers",
+       {{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + testing::base64(bin)}}}},
+      {"bufferViews",
+       {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
+        {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 16}},
+        {{"buffer", 0}, {"byteOffset", 64}, {"byteLength", 32}},
+        {{"buffer", 0}, {"byteOffset", 96}, {"byteLength", 4}}}},
+      {"accessors",
+       {{{"bufferView", 0},
+         {"componentType", 5126},
+         {"count", 4},
+         {"type", "VEC3"},
+         {"min", {0, 0, 0}},
+         {"max", {1, 1, 0}}},
+        {{"bufferView", 1}, {"componentType", 5123}, {"normalized", true}, {"count", 4}, {"type", "VEC2"}},
+        {{"bufferView", 2}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
+        {{"bufferView", 3}, {"componentType", 5121}, {"count", 4}, {"type", "SCALAR"}}}},
+      {"images",
+       {{{"uri", "checker.png"}},
+        {{"uri", "data:image/png;base64," + testing::base64(testing::readFile(dir / "embedded.png"))}}}},
       {"samplers", {{{"wrapS", 33071}, {"wrapT", 33648}}}},
       {"textures", {{{"source", 0}, {"sampler", 0}}, {{"source", 1}}}},
       {"materials",
-       {{{"name", "strip"}, {"alphaMode", "MASK"}, {"alphaCutoff", 0.25}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}},
+       {{{"name", "strip"},
+         {"alphaMode", "MASK"},
+         {"alphaCutoff", 0.25},
+         {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}},
         {{"name", "fan"},
          {"alphaMode", "BLEND"},
          {"doubleSided", true},
          {"pbrMetallicRoughness",
           {{"baseColorFactor", {0.5, 0.25, 1.0, 0.75}},
            {"baseColorTexture",
-            {{"index", 1}, {"texCoord", 1},
-             {"extensions", {{"KHR_texture_transform", {{"offset", {0.5, 0.0}}, {"scale", {2.0, 2.0}}, {"texCoord", 0}}}}}}}}}}}},
-      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"mode", 5}, {"material", 0}},
-                                   {{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 2}, {"TEXCOORD_1", 1}}}, {"indices", 3}, {"mode", 6}, {"material", 1}},
-                                   {{"attributes", {{"POSITION", 0}}}, {"mode", 1}}}}}}},
+            {{"index", 1},
+             {"texCoord", 1},
+             {"extensions",
+              {{"KHR_texture_transform", {{"offset", {0.5, 0.0}}, {"scale", {2.0, 2.0}}, {"texCoord", 0}}}}}}}}}}}},
+      {"meshes",
+       {{{"primitives",
+          {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"mode", 5}, {"material", 0}},
+           {{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 2}, {"TEXCOORD_1", 1}}},
+            {"indices", 3},
+            {"mode", 6},
+            {"material", 1}},
+           {{"attributes", {{"POSITION", 0}}}, {"mode", 1}}}}}}},
       {"nodes", {{{"translation", {10.0, 0.0, 0.0}}, {"children", {1}}}, {{"scale", {2.0, 2.0, 2.0}}, {"mesh", 0}}}},
       {"scenes", {{{"nodes", {0}}}}},
       {"scene", 0}};
@@ -70,7 +88,8 @@ TEST(GltfLoader, StripsFansNormalizedTexcoordsTextureTransformAndNodeTransformsA
   ScratchDir dir;
   const Model m = loadModel(writeFeatureGltf(dir));
   ASSERT_EQ(m.meshes.size(), 2u);  // the lines primitive is dropped with a note
-  EXPECT_TRUE(std::any_of(m.notes.begin(), m.notes.end(), [](const std::string& n) { return n.find("lines") != std::string::npos; }));
+  EXPECT_TRUE(std::any_of(m.notes.begin(), m.notes.end(),
+                          [](const std::string& n) { return n.find("lines") != std::string::npos; }));
   const Mesh &strip = m.meshes[0], &fan = m.meshes[1];
   EXPECT_EQ(strip.triangleCount(), 2u);
   EXPECT_EQ(fan.triangleCount(), 2u);
@@ -159,7 +178,8 @@ TEST(AssimpLoader, ColladaFileLoadsWithItsPercentEncodedTextureAndNodeTranslatio
   <library_geometries><geometry id="geo0" name="quad"><mesh>
     <source id="pos"><float_array id="pos-arr" count="12">0 0 0 1 0 0 1 1 0 0 1 0</float_array>
       <technique_common><accessor source="#pos-arr" count="4" stride="3">
-        <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common></source>
+        <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>
+      </accessor></technique_common></source>
     <source id="uv"><float_array id="uv-arr" count="8">0 0 2500 0 2500 3 0 3</float_array>
       <technique_common><accessor source="#uv-arr" count="4" stride="2">
         <param name="S" type="float"/><param name="T" type="float"/></accessor></technique_common></source>
@@ -172,7 +192,9 @@ TEST(AssimpLoader, ColladaFileLoadsWithItsPercentEncodedTextureAndNodeTranslatio
   </mesh></geometry></library_geometries>
   <library_visual_scenes><visual_scene id="scene"><node id="n0"><translate>0 0 5</translate>
     <instance_geometry url="#geo0"><bind_material><technique_common>
-      <instance_material symbol="m" target="#mat0"><bind_vertex_input semantic="UV0" input_semantic="TEXCOORD" input_set="0"/></instance_material>
+      <instance_material symbol="m" target="#mat0">
+        <bind_vertex_input semantic="UV0" input_semantic="TEXCOORD" input_set="0"/>
+      </instance_material>
     </technique_common></bind_material></instance_geometry></node></visual_scene></library_visual_scenes>
   <scene><instance_visual_scene url="#scene"/></scene>
 </COLLADA>
@@ -207,6 +229,73 @@ TEST(AssimpLoader, Ac3dFileLoadsWithItsTextureAndRepeatedTexcoords) {
     for (const Float2& t : mesh.texcoords) maxU = std::max(maxU, t.u);
   EXPECT_EQ(maxU, 3000.0f);
   EXPECT_EQ(probeTexture(m, 0).height, 2u);
+}
+
+}  // namespace
+}  // namespace tessera::model
+
+namespace tessera::model {
+namespace {
+
+TEST(AssimpLoader, Gltf1FileIsHandedToAssimpAndKeepsItsTexcoords) {
+  ScratchDir dir;
+  testing::writeChecker(dir / "checker.png", 4, 4);
+  std::string bin;
+  testing::appendBytes(bin, std::vector<float>{0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0});  // 48 bytes
+  testing::appendBytes(bin, std::vector<float>{0, 0, 2500, 0, 2500, 3, 0, 3});        // 32 bytes
+  testing::appendBytes(bin, std::vector<uint16_t>{0, 1, 2, 0, 2, 3});                 // 12 bytes
+  const nlohmann::json j = {
+      {"asset", {{"version", "1.0"}}},
+      {"buffers",
+       {{"buf",
+         {{"byteLength", bin.size()},
+          {"type", "arraybuffer"},
+          {"uri", "data:application/octet-stream;base64," + testing::base64(bin)}}}}},
+      {"bufferViews",
+       {{"vPos", {{"buffer", "buf"}, {"byteOffset", 0}, {"byteLength", 48}, {"target", 34962}}},
+        {"vUv", {{"buffer", "buf"}, {"byteOffset", 48}, {"byteLength", 32}, {"target", 34962}}},
+        {"vIdx", {{"buffer", "buf"}, {"byteOffset", 80}, {"byteLength", 12}, {"target", 34963}}}}},
+      {"accessors",
+       {{"aPos",
+         {{"bufferView", "vPos"},
+          {"byteOffset", 0},
+          {"byteStride", 12},
+          {"componentType", 5126},
+          {"count", 4},
+          {"type", "VEC3"},
+          {"min", {0, 0, 0}},
+          {"max", {1, 1, 0}}}},
+        {"aUv",
+         {{"bufferView", "vUv"},
+          {"byteOffset", 0},
+          {"byteStride", 8},
+          {"componentType", 5126},
+          {"count", 4},
+          {"type", "VEC2"}}},
+        {"aIdx",
+         {{"bufferView", "vIdx"}, {"byteOffset", 0}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}}}}},
+      {"images", {{"img0", {{"uri", "checker.png"}}}}},
+      {"samplers", {{"s0", {{"wrapS", 10497}, {"wrapT", 10497}}}}},
+      {"textures", {{"tex0", {{"source", "img0"}, {"sampler", "s0"}}}}},
+      {"materials", {{"mat0", {{"values", {{"diffuse", "tex0"}}}}}}},
+      {"meshes",
+       {{"quad",
+         {{"primitives",
+           {{{"attributes", {{"POSITION", "aPos"}, {"TEXCOORD_0", "aUv"}}},
+             {"indices", "aIdx"},
+             {"material", "mat0"},
+             {"mode", 4}}}}}}}},
+      {"nodes", {{"n0", {{"meshes", {"quad"}}}}}},
+      {"scenes", {{"s", {{"nodes", {"n0"}}}}}},
+      {"scene", "s"}};
+  testing::writeFile(dir / "v1.gltf", j.dump(1));
+  const Model m = loadModel(dir / "v1.gltf");
+  EXPECT_EQ(m.loader, "assimp:gltf");
+  EXPECT_EQ(m.triangleCount(), 2u);
+  ASSERT_EQ(m.textures.size(), 1u);
+  ASSERT_EQ(m.meshes.size(), 1u);
+  EXPECT_TRUE(hasTexcoord(m.meshes[0], 2500.0f, 3.0f));  // Assimp's v flip and ours cancel
+  EXPECT_EQ(loadTexture(m, 0).width, 4u);
 }
 
 }  // namespace

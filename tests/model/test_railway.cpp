@@ -6,7 +6,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-
 #include <nlohmann/json.hpp>
 
 #include "model/model.h"
@@ -71,7 +70,8 @@ TEST(Railway, TexcoordsOutsideTheUnitSquareSurviveExactlyAsTheAccessorsSay) {
     const auto& acc = j["accessors"][prims[p]["attributes"]["TEXCOORD_0"].get<size_t>()];
     float lo[2] = {1e30f, 1e30f}, hi[2] = {-1e30f, -1e30f};
     for (const Float2& t : m.meshes[p].texcoords) {
-      lo[0] = std::min(lo[0], t.u), lo[1] = std::min(lo[1], t.v), hi[0] = std::max(hi[0], t.u), hi[1] = std::max(hi[1], t.v);
+      lo[0] = std::min(lo[0], t.u), lo[1] = std::min(lo[1], t.v), hi[0] = std::max(hi[0], t.u),
+      hi[1] = std::max(hi[1], t.v);
       maxAbs = std::max({maxAbs, std::fabs(t.u), std::fabs(t.v)});
     }
     for (int k = 0; k < 2; ++k) {
@@ -109,8 +109,8 @@ TEST(Railway, EveryTextureDecodesAndItsHeaderProbeAgrees) {
     // 27 JPEGs and one PNG (texture 5), each as its mimeType says.
     EXPECT_EQ(info.format, m.textures[i].mimeType == "image/png" ? "png" : "jpeg") << i;
     EXPECT_FALSE(img.usesAlpha) << i;  // every railway texture is RGB
-    std::printf("railway.glb texture %2zu: %ux%u, %d channels, %llu bytes\n", i, img.width, img.height, img.fileChannels,
-                (unsigned long long)m.textures[i].size);
+    std::printf("railway.glb texture %2zu: %ux%u, %d channels, %llu bytes\n", i, img.width, img.height,
+                img.fileChannels, (unsigned long long)m.textures[i].size);
   }
 }
 

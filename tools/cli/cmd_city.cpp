@@ -77,7 +77,8 @@ void addCityCommand(CLI::App& app) {
       ->capture_default_str();
   city->add_option("-o,--output", a->outDir, "Output directory (created if missing)")->required();
   city->add_flag("--quiet", a->quiet, "No progress lines on stderr");
-  city->add_flag("--load-back", a->loadBack, "Read the written glTF back with the model loader and report its counts and time");
+  city->add_flag("--load-back", a->loadBack,
+                 "Read the written glTF back with the model loader and report its counts and time");
   city->callback([a] { runCity(*a); });
 }
 

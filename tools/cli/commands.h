@@ -10,5 +10,6 @@ void addDemoCommand(CLI::App& app);     // demo (cmd_demo.cpp)
 void addGoldenCommands(CLI::App& app);  // golden check / update (cmd_golden.cpp)
 void addVerifyCommands(CLI::App& app);  // crosscheck, visibility, compare, bench (cmd_verify.cpp)
 void addCityCommand(CLI::App& app);     // city (cmd_city.cpp)
+void addMtaCommands(CLI::App& app);     // mta build / info (cmd_mta.cpp)
 
 }  // namespace tessera::cli

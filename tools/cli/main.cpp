@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   tessera::cli::addGoldenCommands(app);
   tessera::cli::addVerifyCommands(app);
   tessera::cli::addCityCommand(app);
+  tessera::cli::addMtaCommands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,326 @@
+#include "mta/build.h"
+
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+
+#include "mta/atlas_image.h"
+#include "mta/critical.h"
+#include "mta/paging_file.h"
+#include "mta/tree_build.h"
+#include "raster/command_list.h"
+
+namespace tessera::mta {
+
+uint64_t residentBytes() {
+  std::ifstream f("/proc/self/status");
+  std::string line;
+  while (std::getline(f, line))
+    if (line.rfind("VmRSS:", 0) == 0) return uint64_t(std::strtoull(line.c_str() + 6, nullptr, 10)) * 1024;
+  return 0;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Decoded images with their mip chains, least recently used evicted beyond the budget.
+struct ImageCache {
+  const Scene& scene;
+  uint64_t budget;
+  std::map<uint32_t, std::pair<std::shared_ptr<const MipImage>, uint64_t>> items;
+  uint64_t bytes = 0, tick = 0, decoded = 0;
+
+  // Makes every image of `need` resident (decoding the missing ones in parallel) and evicts others.
+  void require(const std::vector<uint32_t>& need) {
+    std::vector<uint32_t> missing;
+    for (uint32_t i : need)
+      if (!items.count(i)) missing.push_back(i);
+    std::vector<std::shared_ptr<const MipImage>> loaded(missing.size());
+    tbb::parallel_for(size_t(0), missing.size(), [&](size_t k) {
+      const uint32_t i = missing[k];
+      const model::Image img = scene.loadImage(i);
+      const SceneImage& si = scene.images[i];
+      if (img.width != si.width || img.height != si.height)
+        throw Error("mta: image " + std::to_string(i) + " '" + si.name + "' decodes to " + std::to_string(img.width) + "x" +
+                    std::to_string(img.height) + " but its header said " + std::to_string(si.width) + "x" + std::to_string(si.height));
+      loaded[k] = std::make_shared<const MipImage>(makeMipImage(img));
+    });
+    ++tick;
+    for (size_t k = 0; k < missing.size(); ++k) {
+      bytes += loaded[k]->bytes();
+      items[missing[k]] = {loaded[k], tick};
+    }
+    decoded += missing.size();
+    for (uint32_t i : need) items[i].second = tick;
+    while (bytes > budget) {  // evict the least recently used image not needed now (ties: lowest index)
+      auto victim = items.end();
+      for (auto it = items.begin(); it != items.end(); ++it)
+        if (it->second.second != tick && (victim == items.end() || it->second.second < victim->second.second)) victim = it;
+      if (victim == items.end()) break;
+      bytes -= victim->second.first->bytes();
+      items.erase(victim);
+    }
+  }
+  const MipImage& get(uint32_t i) const { return *items.at(i).first; }
+};
+
+// Original images: packed into blocks of about `target` bytes as row ranges.
+struct OriginalPacker {
+  PagingFileWriter& w;
+  MtaMeta& meta;
+  uint64_t target;
+  std::vector<uint8_t> cur;
+  std::vector<size_t> pending;  // pieces waiting for the current block's index
+  uint32_t firstImage = 0;
+
+  void flush() {
+    if (cur.empty()) return;
+    const uint32_t b = w.addBlock(BlockKind::Original, 0, 0, firstImage, cur);
+    for (size_t p : pending) meta.pieces[p].block = b;
+    pending.clear();
+    cur.clear();
+  }
+  void add(uint32_t image, const MipImage& img) {
+    ImageRecord& r = meta.images[image];
+    const size_t rowBytes = size_t(r.width) * r.channels;
+    r.firstPiece = uint32_t(meta.pieces.size());
+    for (uint32_t row = 0; row < r.height;) {
+      if (cur.size() + rowBytes > target && !cur.empty()) flush();
+      if (cur.empty()) firstImage = image;
+      const uint32_t rows = uint32_t(std::min<uint64_t>(r.height - row, std::max<uint64_t>(1, (target - cur.size()) / rowBytes)));
+      pending.push_back(meta.pieces.size());
+      meta.pieces.push_back(PieceRecord{image, 0, row, rows, cur.size()});
+      const uint8_t* src = img.levels[0].data() + size_t(row) * r.width * 4;
+      for (size_t t = 0; t < size_t(rows) * r.width; ++t)
+        for (uint32_t c = 0; c < r.channels; ++c) cur.push_back(src[t * 4 + c]);
+      row += rows;
+    }
+    r.pieceCount = uint32_t(meta.pieces.size()) - r.firstPiece;
+  }
+};
+
+// Leaf-local atlas texel position of vertex k of triangle t (layer-0 entry e).
+std::pair<double, double> localTexel(const Scene& s, const Tree& tree, const AtlasEntry& e, uint32_t t, int k) {
+  const Float2* uvs = &tree.geometry.layers[0].uv[t * 3];
+  const auto shift = repeatShift(uvs, s.textures[e.texture].wrapS, s.textures[e.texture].wrapT);
+  const double u = float(double(uvs[k].u) - shift.first), v = float(double(uvs[k].v) - shift.second);
+  const double sw = e.source.width(), sh = e.source.height();
+  return {e.x + (sw > 0.0 ? (u - e.source.u0) / sw * e.w : 0.5 * e.w),
+          e.y + (sh > 0.0 ? (v - e.source.v0) / sh * e.h : 0.5 * e.h)};
+}
+
+// Renders layer `layer` of leaf `node`.
+void renderLeaf(const Scene& s, const Tree& tree, uint32_t node, uint32_t layer, const ImageCache& cache, uint32_t A,
+                std::vector<uint8_t>& out) {
+  const Node& n = tree.nodes[node];
+  const uint32_t C = tree.channels();
+  out.assign(size_t(A) * A * C, 0);
+  for (const AtlasEntry& e : n.entries) {
+    if (layer == 0) {
+      const SceneTexture& tex = s.textures[e.texture];
+      AffineMap m;
+      m.ux = e.source.width() / e.w;
+      m.vy = e.source.height() / e.h;
+      m.u0 = e.source.u0 - e.x * m.ux;
+      m.v0 = e.source.v0 - e.y * m.vy;
+      fillArea(out.data(), A, C, e.x, e.y, e.w, e.h, m, cache.get(tex.image), tex.wrapS, tex.wrapT);
+      continue;
+    }
+    // §5.1.3: the first triangle of this texture with a layer texture and a non-degenerate atlas triangle.
+    const SceneLayer& L = tree.geometry.layers[layer];
+    for (uint32_t t = n.firstTriangle; t < n.firstTriangle + n.triangleCount; ++t) {
+      if (tree.geometry.layers[0].texture[t] != e.texture || L.texture[t] < 0) continue;
+      const auto p0 = localTexel(s, tree, e, t, 0), p1 = localTexel(s, tree, e, t, 1), p2 = localTexel(s, tree, e, t, 2);
+      const double ax = p1.first - p0.first, ay = p1.second - p0.second, bx = p2.first - p0.first, by = p2.second - p0.second;
+      const double det = ax * by - bx * ay;
+      if (!(std::fabs(det) > 1e-9)) continue;
+      const Float2 *uv = &L.uv[t * 3];
+      const double du1 = double(uv[1].u) - uv[0].u, dv1 = double(uv[1].v) - uv[0].v;
+      const double du2 = double(uv[2].u) - uv[0].u, dv2 = double(uv[2].v) - uv[0].v;
+      // (x, y) - p0 = a·(ax, ay) + b·(bx, by); uv = uv0 + a·d1 + b·d2.
+      AffineMap m;
+      m.ux = (du1 * by - du2 * ay) / det, m.uy = (du2 * ax - du1 * bx) / det;
+      m.vx = (dv1 * by - dv2 * ay) / det, m.vy = (dv2 * ax - dv1 * bx) / det;
+      m.u0 = uv[0].u - m.ux * p0.first - m.uy * p0.second;
+      m.v0 = uv[0].v - m.vx * p0.first - m.vy * p0.second;
+      const SceneTexture& tex = s.textures[L.texture[t]];
+      fillArea(out.data(), A, C, e.x, e.y, e.w, e.h, m, cache.get(tex.image), tex.wrapS, tex.wrapT);
+      break;
+    }
+  }
+}
+
+}  // namespace
+
+BuildReport buildMta(const Scene& scene, const BuildParams& params, const std::string& outPath) {
+  const auto t0 = Clock::now();
+  params.validate();
+  scene.validate();
+  std::optional<tbb::global_control> threads;
+  if (params.threads) threads.emplace(tbb::global_control::max_allowed_parallelism, params.threads);
+  BuildReport rep;
+  auto checkMemory = [&](const char* where) {
+    const uint64_t rss = residentBytes();
+    rep.peakResidentBytes = std::max(rep.peakResidentBytes, rss);
+    if (params.memoryLimit && rss > params.memoryLimit)
+      throw Error("mta: resident memory " + std::to_string(rss >> 20) + " MiB exceeds --memory-limit " +
+                  std::to_string(params.memoryLimit >> 20) + " MiB " + where +
+                  " (the scene's geometry and the open batch must fit; raise the limit)");
+  };
+  const Geometry& in = scene.geometry;
+  if (in.triangleCount() == 0) throw Error("mta: scene '" + scene.name + "' has no triangles");
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  for (const Float3& v : in.positions) {
+    const double c[3] = {v.x, v.y, v.z};
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
+  }
+  const double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  const double dMin = params.dMin > 0.0 ? params.dMin : diag / params.dMinDivisor;
+  if (!(dMin > 0.0)) throw Error("mta: scene '" + scene.name + "' has a zero-size bounding box; give --d-min");
+  const uint32_t A = params.atlasSize, layers = uint32_t(in.layers.size());
+
+  MtaMeta meta;
+  meta.params = params;
+  meta.params.tanHalfFov = params.effectiveTanHalfFov();
+  meta.layerCount = layers;
+  meta.textures = scene.textures;
+  CriticalReport crit;
+  const Geometry g = handleCriticalTriangles(scene, params, dMin, crit);
+  meta.stats = BuildStats{in.triangleCount(), g.triangleCount(), crit.criticalAtRequested, crit.criticalAfterRaise,
+                          crit.trianglesAdded, crit.maxSplitDepth, dMin, crit.dMinUsed, diag};
+  checkMemory("after critical-triangle handling");
+  if (params.progress)
+    std::fprintf(stderr, "mta: %zu triangles, d_min %.6g (requested %.6g), %llu critical triangles split into %llu more\n",
+                 g.triangleCount(), crit.dMinUsed, dMin, (unsigned long long)crit.criticalAfterRaise,
+                 (unsigned long long)crit.trianglesAdded);
+  for (uint8_t alpha = 0; alpha < 2; ++alpha) {
+    std::vector<uint32_t> tris;
+    for (uint32_t t = 0; t < g.triangleCount(); ++t)
+      if (g.alpha[t] == alpha) tris.push_back(t);
+    if (tris.empty()) continue;
+    meta.trees.push_back(buildTree(scene, g, tris, alpha, params, crit.dMinUsed));
+  }
+  // Leaf image lists, image channels and first-use order.
+  meta.images.resize(scene.images.size());
+  std::vector<uint8_t> used(scene.images.size(), 0);
+  uint64_t leafCount = 0;
+  for (Tree& tree : meta.trees) {
+    tree.atlasBlocks.assign(tree.nodes.size() * layers, 0);
+    for (Node& n : tree.nodes) {
+      if (!n.leaf()) continue;
+      ++leafCount;
+      std::set<uint32_t> imgs;
+      for (uint32_t t = n.firstTriangle; t < n.firstTriangle + n.triangleCount; ++t)
+        for (uint32_t l = 0; l < layers; ++l)
+          if (tree.geometry.layers[l].texture[t] >= 0) imgs.insert(scene.textures[tree.geometry.layers[l].texture[t]].image);
+      n.imageFirst = uint32_t(tree.leafImages.size());
+      n.imageCount = uint32_t(imgs.size());
+      for (uint32_t i : imgs) {
+        tree.leafImages.push_back(i);
+        used[i] = 1;
+        meta.images[i].channels = std::max<uint32_t>(meta.images[i].channels, tree.channels());
+      }
+    }
+  }
+  for (size_t i = 0; i < scene.images.size(); ++i) {
+    meta.images[i].width = scene.images[i].width, meta.images[i].height = scene.images[i].height;
+    meta.images[i].name = scene.images[i].name;
+    if (!used[i]) meta.images[i].channels = 3;  // unused images are not stored (0 pieces)
+  }
+  checkMemory("after building the tree structure");
+
+  PagingFileWriter writer(outPath);
+  const uint64_t atlasBytes4 = uint64_t(A) * A * 4;
+  OriginalPacker packer{writer, meta, atlasBytes4, {}, {}, 0};
+  ImageCache cache{scene, std::clamp<uint64_t>(params.memoryLimit / 8, 64ull << 20, 1ull << 30), {}, 0, 0, 0};
+  if (!params.memoryLimit) cache.budget = 1ull << 30;
+  std::vector<uint8_t> stored(scene.images.size(), 0);
+  uint64_t leavesDone = 0;
+  auto lastProgress = Clock::now();
+  for (size_t ti = 0; ti < meta.trees.size(); ++ti) {
+    Tree& tree = meta.trees[ti];
+    const uint32_t C = tree.channels();
+    // Partial inner atlases (per node, per layer) and how many children are still missing.
+    std::map<uint32_t, std::pair<std::vector<std::vector<uint8_t>>, int>> open;
+    std::function<void(uint32_t, std::vector<std::vector<uint8_t>>&)> complete = [&](uint32_t node,
+                                                                                       std::vector<std::vector<uint8_t>>& atlas) {
+      for (uint32_t l = 0; l < layers; ++l)
+        tree.atlasBlocks[node * layers + l] = writer.addBlock(BlockKind::Atlas, uint8_t(ti), uint8_t(l), node, atlas[l]);
+      const int32_t parent = tree.nodes[node].parent;
+      if (parent < 0) return;
+      auto it = open.find(uint32_t(parent));
+      if (it == open.end()) {
+        int kids = 0;
+        for (int32_t c : tree.nodes[parent].children) kids += c >= 0;
+        it = open.emplace(uint32_t(parent), std::make_pair(std::vector<std::vector<uint8_t>>(layers, std::vector<uint8_t>(size_t(A) * A * C, 0)), kids)).first;
+      }
+      int q = 0;
+      while (tree.nodes[parent].children[q] != int32_t(node)) ++q;
+      for (uint32_t l = 0; l < layers; ++l) downsampleIntoQuadrant(atlas[l].data(), it->second.first[l].data(), A, C, q);
+      if (--it->second.second == 0) {
+        auto done = std::move(it->second.first);
+        open.erase(it);
+        complete(uint32_t(parent), done);
+      }
+    };
+    std::vector<uint32_t> leaves;
+    for (uint32_t i = 0; i < tree.nodes.size(); ++i)
+      if (tree.nodes[i].leaf()) leaves.push_back(i);
+    constexpr size_t kBatch = 8;  // fixed: the bytes never depend on it, only memory and speed do
+    for (size_t b0 = 0; b0 < leaves.size(); b0 += kBatch) {
+      const size_t b1 = std::min(leaves.size(), b0 + kBatch);
+      std::vector<uint32_t> need, fresh;
+      for (size_t k = b0; k < b1; ++k) {
+        const Node& n = tree.nodes[leaves[k]];
+        for (uint32_t j = 0; j < n.imageCount; ++j) {
+          const uint32_t img = tree.leafImages[n.imageFirst + j];
+          need.push_back(img);
+          if (!stored[img]) stored[img] = 1, fresh.push_back(img);
+        }
+      }
+      std::sort(need.begin(), need.end());
+      need.erase(std::unique(need.begin(), need.end()), need.end());
+      cache.require(need);
+      std::vector<std::vector<std::vector<uint8_t>>> atlases(b1 - b0, std::vector<std::vector<uint8_t>>(layers));
+      tbb::parallel_for(size_t(0), (b1 - b0) * layers, [&](size_t k) {
+        renderLeaf(scene, tree, leaves[b0 + k / layers], uint32_t(k % layers), cache, A, atlases[k / layers][k % layers]);
+      });
+      for (uint32_t img : fresh) packer.add(img, cache.get(img));
+      for (size_t k = b0; k < b1; ++k) complete(leaves[k], atlases[k - b0]);
+      leavesDone += b1 - b0;
+      checkMemory("while writing atlases");
+      if (params.progress && Clock::now() - lastProgress > std::chrono::seconds(2)) {
+        lastProgress = Clock::now();
+        std::fprintf(stderr, "mta: %5.1f%%  leaves %llu/%llu, images decoded %llu, file %.1f MiB\n",
+                     100.0 * double(leavesDone) / double(leafCount), (unsigned long long)leavesDone,
+                     (unsigned long long)leafCount, (unsigned long long)cache.decoded, writer.bytesWritten() / 1048576.0);
+      }
+    }
+    for (auto& t : tree.nodes) t.entries.clear(), t.entries.shrink_to_fit();
+  }
+  packer.flush();
+  writer.finish(meta);
+  rep.imagesDecoded = cache.decoded;
+  rep.fileBytes = std::filesystem::file_size(outPath);
+  rep.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  checkMemory("at the end");
+  if (params.progress)
+    std::fprintf(stderr, "mta: wrote %s: %.1f MiB in %.1f s (peak resident %.0f MiB)\n", outPath.c_str(),
+                 rep.fileBytes / 1048576.0, rep.seconds, rep.peakResidentBytes / 1048576.0);
+  return rep;
+}
+
+}  // namespace tessera::mta

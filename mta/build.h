@@ -1,0 +1,34 @@
+// The atlas tree build (thesis §4.5): from a scene to a paging file, out of core.
+//
+// Implements: d_min from the parameters (absolute or D / divisor), critical-triangle handling, the RGB
+// and the RGBA tree, leaf atlases for every layer (§5.1.3: layers >= 1 reuse layer 0's layout; each
+// area is filled through the affine map of the first triangle of that texture in the leaf), inner
+// atlases by 2x downsampling (post-order, as children complete), original images stored once each in
+// blocks of about atlas size, all streamed into the paging file in a fixed order. Images are decoded
+// one batch of leaves at a time through a bounded LRU cache; VmRSS is checked against the limit.
+// The bytes depend only on the scene and the parameters (never on threads or timing).
+// Does not implement: rendering / paging at runtime.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "mta/params.h"
+#include "mta/scene.h"
+
+namespace tessera::mta {
+
+struct BuildReport {
+  double seconds = 0.0;          // wall time
+  uint64_t peakResidentBytes = 0;  // max VmRSS seen at the checkpoints
+  uint64_t fileBytes = 0;
+  uint64_t imagesDecoded = 0;    // decodes incl. re-decodes after cache eviction
+};
+
+// Throws Error (parameters, scene, memory limit, I/O); never leaves a partial file under outPath.
+BuildReport buildMta(const Scene& scene, const BuildParams& params, const std::string& outPath);
+
+// Resident set size of this process from /proc/self/status (0 if unavailable).
+uint64_t residentBytes();
+
+}  // namespace tessera::mta

@@ -1,0 +1,439 @@
+#include "mta/paging_file.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+
+#include "raster/command_list.h"
+#include "raster/sha256.h"
+
+namespace tessera::mta {
+
+namespace {
+
+constexpr char kMagic[8] = {'T', 'E', 'S', 'S', 'M', 'T', 'A', '\x1a'};
+
+// Little-endian serialization (the only hosts are little-endian x86-64; memcpy keeps it explicit).
+struct Out {
+  std::vector<uint8_t> b;
+  template <class T>
+  void put(T v) {
+    const size_t o = b.size();
+    b.resize(o + sizeof(T));
+    std::memcpy(b.data() + o, &v, sizeof(T));
+  }
+  template <class T>
+  void arr(const std::vector<T>& v) {
+    put<uint64_t>(v.size());
+    const size_t o = b.size();
+    b.resize(o + v.size() * sizeof(T));
+    if (!v.empty()) std::memcpy(b.data() + o, v.data(), v.size() * sizeof(T));
+  }
+  void str(const std::string& s) {
+    put<uint32_t>(uint32_t(s.size()));
+    b.insert(b.end(), s.begin(), s.end());
+  }
+};
+
+struct In {
+  const std::vector<uint8_t>& b;
+  size_t pos = 0;
+  const std::string& path;
+  [[noreturn]] void fail(const std::string& field, const std::string& why) const {
+    throw Error(path + ": metadata byte " + std::to_string(pos) + ", " + field + ": " + why);
+  }
+  template <class T>
+  T get(const char* field) {
+    if (b.size() - pos < sizeof(T)) fail(field, "truncated");
+    T v;
+    std::memcpy(&v, b.data() + pos, sizeof(T));
+    pos += sizeof(T);
+    return v;
+  }
+  template <class T>
+  std::vector<T> arr(const char* field, uint64_t expect = UINT64_MAX) {
+    const uint64_t n = get<uint64_t>(field);
+    if (expect != UINT64_MAX && n != expect) fail(field, "has " + std::to_string(n) + " elements, expected " + std::to_string(expect));
+    if (n > (b.size() - pos) / sizeof(T)) fail(field, "length " + std::to_string(n) + " exceeds the metadata");
+    std::vector<T> v(n);
+    if (n) std::memcpy(v.data(), b.data() + pos, n * sizeof(T));
+    pos += n * sizeof(T);
+    return v;
+  }
+  std::string str(const char* field) {
+    const uint32_t n = get<uint32_t>(field);
+    if (n > b.size() - pos) fail(field, "string length exceeds the metadata");
+    std::string s(reinterpret_cast<const char*>(b.data() + pos), n);
+    pos += n;
+    return s;
+  }
+};
+
+#pragma pack(push, 1)
+struct NodeDisk {
+  float bounds[6];
+  float minDistance, coverage;
+  uint32_t level, cellX, cellY;
+  int32_t children[4], parent;
+  uint32_t firstTriangle, triangleCount, imageFirst, imageCount;
+};
+struct BlockDisk {
+  uint64_t offset, size;
+  uint8_t kind, tree, layer, pad;
+  uint32_t node;
+  uint8_t sha[32];
+};
+struct PieceDisk {
+  uint32_t image, block, row0, rows;
+  uint64_t offset;
+};
+#pragma pack(pop)
+
+std::vector<uint8_t> serialize(const MtaMeta& m) {
+  Out o;
+  const BuildParams& p = m.params;
+  o.put<uint32_t>(m.layerCount), o.put<uint32_t>(p.atlasSize), o.put<uint32_t>(p.border), o.put<uint32_t>(p.screenWidth);
+  o.put<double>(p.dMin), o.put<double>(p.dMinDivisor), o.put<double>(p.tau), o.put<double>(p.fovDegrees);
+  o.put<double>(p.tanHalfFov), o.put<double>(p.criticalThreshold);
+  const BuildStats& s = m.stats;
+  o.put(s.trianglesIn), o.put(s.trianglesOut), o.put(s.criticalAtRequested), o.put(s.criticalAfterRaise), o.put(s.trianglesAdded);
+  o.put(s.maxSplitDepth), o.put(s.dMinRequested), o.put(s.dMinUsed), o.put(s.sceneDiagonal);
+  o.put<uint32_t>(uint32_t(m.textures.size()));
+  for (const SceneTexture& t : m.textures) o.put(t.image), o.put(uint8_t(t.wrapS)), o.put(uint8_t(t.wrapT));
+  o.put<uint32_t>(uint32_t(m.images.size()));
+  for (const ImageRecord& r : m.images) {
+    o.put(r.width), o.put(r.height), o.put(r.channels), o.put(r.firstPiece), o.put(r.pieceCount);
+    o.str(r.name);
+  }
+  std::vector<PieceDisk> pieces;
+  for (const PieceRecord& r : m.pieces) pieces.push_back(PieceDisk{r.image, r.block, r.row0, r.rows, r.offset});
+  o.arr(pieces);
+  std::vector<BlockDisk> blocks;
+  for (const BlockInfo& b : m.blocks) {
+    BlockDisk d{b.offset, b.size, uint8_t(b.kind), b.tree, b.layer, 0, b.node, {}};
+    std::memcpy(d.sha, b.sha256.data(), 32);
+    blocks.push_back(d);
+  }
+  o.arr(blocks);
+  o.put<uint32_t>(uint32_t(m.trees.size()));
+  for (const Tree& t : m.trees) {
+    o.put(t.alpha);
+    std::vector<NodeDisk> nodes;
+    for (const Node& n : t.nodes) {
+      NodeDisk d{};
+      std::memcpy(d.bounds, n.bounds.data(), sizeof d.bounds);
+      d.minDistance = n.minDistance, d.coverage = n.coverage, d.level = n.level, d.cellX = n.cellX, d.cellY = n.cellY;
+      std::memcpy(d.children, n.children.data(), sizeof d.children);
+      d.parent = n.parent, d.firstTriangle = n.firstTriangle, d.triangleCount = n.triangleCount;
+      d.imageFirst = n.imageFirst, d.imageCount = n.imageCount;
+      nodes.push_back(d);
+    }
+    o.arr(nodes);
+    o.arr(t.geometry.positions);
+    o.arr(t.geometry.source);
+    for (uint32_t l = 0; l < m.layerCount; ++l) o.arr(t.geometry.layers[l].texture), o.arr(t.geometry.layers[l].uv);
+    o.arr(t.atlasUV);
+    o.arr(t.leafImages);
+    o.arr(t.atlasBlocks);
+  }
+  return std::move(o.b);
+}
+
+MtaMeta deserialize(const std::vector<uint8_t>& bytes, const std::string& path) {
+  In in{bytes, 0, path};
+  MtaMeta m;
+  BuildParams& p = m.params;
+  m.layerCount = in.get<uint32_t>("layer_count");
+  p.atlasSize = in.get<uint32_t>("atlas_size"), p.border = in.get<uint32_t>("border"), p.screenWidth = in.get<uint32_t>("screen_width");
+  p.dMin = in.get<double>("d_min"), p.dMinDivisor = in.get<double>("d_min_divisor"), p.tau = in.get<double>("tau");
+  p.fovDegrees = in.get<double>("fov"), p.tanHalfFov = in.get<double>("tan_half_fov");
+  p.criticalThreshold = in.get<double>("critical_threshold");
+  if (m.layerCount < 1 || m.layerCount > 16) in.fail("layer_count", std::to_string(m.layerCount) + " outside [1, 16]");
+  try {
+    p.validate();
+  } catch (const Error& e) {
+    in.fail("parameters", e.what());
+  }
+  BuildStats& s = m.stats;
+  s.trianglesIn = in.get<uint64_t>("stats"), s.trianglesOut = in.get<uint64_t>("stats");
+  s.criticalAtRequested = in.get<uint64_t>("stats"), s.criticalAfterRaise = in.get<uint64_t>("stats");
+  s.trianglesAdded = in.get<uint64_t>("stats"), s.maxSplitDepth = in.get<uint32_t>("stats");
+  s.dMinRequested = in.get<double>("stats"), s.dMinUsed = in.get<double>("stats"), s.sceneDiagonal = in.get<double>("stats");
+  const uint32_t nt = in.get<uint32_t>("textures");
+  if (nt > bytes.size()) in.fail("textures", "count exceeds the metadata");
+  for (uint32_t i = 0; i < nt; ++i) {
+    SceneTexture t;
+    t.image = in.get<uint32_t>("texture.image");
+    const uint8_t ws = in.get<uint8_t>("texture.wrap"), wt = in.get<uint8_t>("texture.wrap");
+    if (ws > 2 || wt > 2) in.fail("textures/" + std::to_string(i), "invalid wrap mode");
+    t.wrapS = model::Wrap(ws), t.wrapT = model::Wrap(wt);
+    m.textures.push_back(t);
+  }
+  const uint32_t ni = in.get<uint32_t>("images");
+  if (ni > bytes.size()) in.fail("images", "count exceeds the metadata");
+  for (uint32_t i = 0; i < ni; ++i) {
+    ImageRecord r;
+    r.width = in.get<uint32_t>("image.width"), r.height = in.get<uint32_t>("image.height");
+    r.channels = in.get<uint32_t>("image.channels"), r.firstPiece = in.get<uint32_t>("image.first_piece");
+    r.pieceCount = in.get<uint32_t>("image.piece_count");
+    r.name = in.str("image.name");
+    m.images.push_back(r);
+  }
+  for (const PieceDisk& d : in.arr<PieceDisk>("pieces")) m.pieces.push_back(PieceRecord{d.image, d.block, d.row0, d.rows, d.offset});
+  for (const BlockDisk& d : in.arr<BlockDisk>("blocks")) {
+    BlockInfo b{d.offset, d.size, BlockKind(d.kind), d.tree, d.layer, d.node, {}};
+    std::memcpy(b.sha256.data(), d.sha, 32);
+    m.blocks.push_back(b);
+  }
+  const uint32_t ntree = in.get<uint32_t>("trees");
+  if (ntree > 2) in.fail("trees", std::to_string(ntree) + " trees (at most 2: RGB and RGBA)");
+  for (uint32_t ti = 0; ti < ntree; ++ti) {
+    Tree t;
+    t.alpha = in.get<uint8_t>("tree.alpha");
+    for (const NodeDisk& d : in.arr<NodeDisk>("tree.nodes")) {
+      Node n;
+      std::memcpy(n.bounds.data(), d.bounds, sizeof d.bounds);
+      n.minDistance = d.minDistance, n.coverage = d.coverage, n.level = d.level, n.cellX = d.cellX, n.cellY = d.cellY;
+      std::memcpy(n.children.data(), d.children, sizeof d.children);
+      n.parent = d.parent, n.firstTriangle = d.firstTriangle, n.triangleCount = d.triangleCount;
+      n.imageFirst = d.imageFirst, n.imageCount = d.imageCount;
+      t.nodes.push_back(n);
+    }
+    t.geometry.positions = in.arr<Float3>("tree.positions");
+    const uint64_t tris = t.geometry.positions.size() / 3;
+    if (t.geometry.positions.size() % 3) in.fail("tree.positions", "not 3 per triangle");
+    t.geometry.source = in.arr<uint32_t>("tree.source", tris);
+    t.geometry.alpha.assign(tris, t.alpha);
+    t.geometry.layers.resize(m.layerCount);
+    for (uint32_t l = 0; l < m.layerCount; ++l) {
+      t.geometry.layers[l].texture = in.arr<int32_t>("tree.layer.texture", tris);
+      t.geometry.layers[l].uv = in.arr<Float2>("tree.layer.uv", tris * 3);
+    }
+    t.atlasUV = in.arr<Float2>("tree.atlas_uv", tris * 3);
+    t.leafImages = in.arr<uint32_t>("tree.leaf_images");
+    t.atlasBlocks = in.arr<uint32_t>("tree.atlas_blocks", uint64_t(t.nodes.size()) * m.layerCount);
+    m.trees.push_back(std::move(t));
+  }
+  if (in.pos != bytes.size()) in.fail("end", std::to_string(bytes.size() - in.pos) + " trailing bytes");
+  return m;
+}
+
+// Cross-reference checks: everything a consumer indexes with is in range and the ranges nest.
+void validateMeta(const MtaMeta& m, const std::string& path, uint64_t metaOffset) {
+  auto fail = [&](const std::string& field, const std::string& why) { throw Error(path + ": " + field + ": " + why); };
+  const uint64_t atlasBytes = uint64_t(m.params.atlasSize) * m.params.atlasSize;
+  for (size_t i = 0; i < m.blocks.size(); ++i) {
+    const BlockInfo& b = m.blocks[i];
+    if (b.offset < kHeaderSize || b.offset > metaOffset || b.size > metaOffset - b.offset)
+      fail("blocks/" + std::to_string(i), "range [" + std::to_string(b.offset) + ", +" + std::to_string(b.size) + ") outside the block area");
+    if (b.kind != BlockKind::Atlas && b.kind != BlockKind::Original) fail("blocks/" + std::to_string(i), "unknown kind");
+  }
+  for (size_t i = 0; i < m.textures.size(); ++i)
+    if (m.textures[i].image >= m.images.size()) fail("textures/" + std::to_string(i), "image index out of range");
+  for (size_t i = 0; i < m.images.size(); ++i) {
+    const ImageRecord& r = m.images[i];
+    const std::string f = "images/" + std::to_string(i);
+    if (r.channels != 3 && r.channels != 4) fail(f, "channels must be 3 or 4");
+    if (r.width == 0 || r.height == 0 || r.width > 65536 || r.height > 65536) fail(f, "size out of range");
+    if (uint64_t(r.firstPiece) + r.pieceCount > m.pieces.size()) fail(f, "pieces out of range");
+    uint32_t row = 0;
+    for (uint32_t k = 0; k < r.pieceCount; ++k) {
+      const PieceRecord& pc = m.pieces[r.firstPiece + k];
+      const std::string pf = "pieces/" + std::to_string(r.firstPiece + k);
+      if (pc.image != i || pc.row0 != row || pc.rows == 0) fail(pf, "does not continue image " + std::to_string(i));
+      if (pc.block >= m.blocks.size() || m.blocks[pc.block].kind != BlockKind::Original) fail(pf, "not in an original-texture block");
+      const uint64_t bytes = uint64_t(pc.rows) * r.width * r.channels;
+      if (pc.offset > m.blocks[pc.block].size || bytes > m.blocks[pc.block].size - pc.offset) fail(pf, "exceeds its block");
+      row += pc.rows;
+    }
+    if (r.pieceCount != 0 && row != r.height) fail(f, "pieces cover " + std::to_string(row) + " of " + std::to_string(r.height) + " rows");
+  }
+  for (size_t ti = 0; ti < m.trees.size(); ++ti) {
+    const Tree& t = m.trees[ti];
+    const std::string tf = "trees/" + std::to_string(ti);
+    const uint64_t tris = t.geometry.triangleCount();
+    if (t.alpha > 1) fail(tf, "alpha must be 0 or 1");
+    if (t.nodes.empty()) fail(tf, "no nodes");
+    for (const Float3& v : t.geometry.positions)
+      if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) fail(tf + "/positions", "non-finite value");
+    for (uint32_t l = 0; l < m.layerCount; ++l)
+      for (int32_t x : t.geometry.layers[l].texture)
+        if (x < -1 || x >= int64_t(m.textures.size())) fail(tf + "/layers/" + std::to_string(l), "texture index out of range");
+    for (uint32_t x : t.leafImages)
+      if (x >= m.images.size()) fail(tf + "/leaf_images", "image index out of range");
+    const Node& root = t.nodes[0];
+    if (root.parent != -1 || root.level != 0 || root.cellX || root.cellY || root.firstTriangle != 0 || root.triangleCount != tris)
+      fail(tf + "/nodes/0", "is not a root covering every triangle");
+    for (size_t i = 0; i < t.nodes.size(); ++i) {
+      const Node& n = t.nodes[i];
+      const std::string nf = tf + "/nodes/" + std::to_string(i);
+      if (n.level > 60 || (uint64_t(n.cellX) >> n.level) || (uint64_t(n.cellY) >> n.level)) fail(nf, "level or cell out of range");
+      if (uint64_t(n.firstTriangle) + n.triangleCount > tris) fail(nf, "triangle range exceeds the vertex array");
+      if (!(n.minDistance > 0.0f) || !std::isfinite(n.minDistance)) fail(nf, "min_distance must be > 0");
+      for (uint32_t l = 0; l < m.layerCount; ++l) {
+        const uint32_t b = t.atlasBlocks[i * m.layerCount + l];
+        if (b >= m.blocks.size()) fail(nf, "atlas block out of range");
+        const BlockInfo& bi = m.blocks[b];
+        if (bi.kind != BlockKind::Atlas || bi.tree != ti || bi.node != i || bi.layer != l ||
+            bi.size != atlasBytes * t.channels())
+          fail(nf, "atlas block " + std::to_string(b) + " does not belong to it or has the wrong size");
+      }
+      if (n.leaf()) {
+        if (n.triangleCount == 0) fail(nf, "empty leaf");
+        if (uint64_t(n.imageFirst) + n.imageCount > t.leafImages.size()) fail(nf, "image list out of range");
+        continue;
+      }
+      uint32_t next = n.firstTriangle;
+      for (int q = 0; q < 4; ++q) {
+        const int32_t c = n.children[q];
+        if (c < 0) continue;
+        if (size_t(c) <= i || size_t(c) >= t.nodes.size()) fail(nf, "child " + std::to_string(q) + " out of range");
+        const Node& ch = t.nodes[c];
+        if (ch.parent != int32_t(i) || ch.level != n.level + 1 || ch.cellX != n.cellX * 2 + (q & 1) ||
+            ch.cellY != n.cellY * 2 + (q >> 1))
+          fail(nf, "child " + std::to_string(q) + " has the wrong parent, level or cell");
+        if (ch.firstTriangle != next || ch.triangleCount == 0) fail(nf, "child ranges are not contiguous");
+        next += ch.triangleCount;
+      }
+      if (next != n.firstTriangle + n.triangleCount) fail(nf, "children do not cover its range");
+    }
+  }
+}
+
+}  // namespace
+
+const char* blockKindName(BlockKind k) { return k == BlockKind::Atlas ? "atlas" : k == BlockKind::Original ? "original" : "?"; }
+
+PagingFileWriter::PagingFileWriter(std::string path) : path_(std::move(path)) {
+  tmp_ = path_ + ".tmp-" + std::to_string(::getpid());
+  f_ = std::fopen(tmp_.c_str(), "wb");
+  if (!f_) throw Error(path_ + ": cannot create '" + tmp_ + "': " + std::strerror(errno));
+  const std::vector<uint8_t> zero(kHeaderSize, 0);
+  writeAt(0, zero.data(), zero.size());
+}
+
+PagingFileWriter::~PagingFileWriter() {
+  if (f_) std::fclose(f_);
+  if (!done_) {
+    std::error_code ec;
+    std::filesystem::remove(tmp_, ec);
+  }
+}
+
+void PagingFileWriter::writeAt(uint64_t offset, const void* data, size_t size) {
+  if (std::fseek(f_, long(offset), SEEK_SET) != 0 || std::fwrite(data, 1, size, f_) != size)
+    throw Error(path_ + ": write failed at byte " + std::to_string(offset) + ": " + std::strerror(errno));
+}
+
+uint32_t PagingFileWriter::addBlock(BlockKind kind, uint8_t tree, uint8_t layer, uint32_t node, std::span<const uint8_t> bytes) {
+  end_ = (end_ + 15) & ~uint64_t(15);
+  BlockInfo b{end_, bytes.size(), kind, tree, layer, node, sha256(bytes)};
+  writeAt(end_, bytes.data(), bytes.size());
+  end_ += bytes.size();
+  blocks_.push_back(b);
+  return uint32_t(blocks_.size() - 1);
+}
+
+void PagingFileWriter::finish(MtaMeta& meta) {
+  meta.blocks = blocks_;
+  const std::vector<uint8_t> body = serialize(meta);
+  const uint64_t metaOffset = (end_ + 15) & ~uint64_t(15);
+  writeAt(metaOffset, body.data(), body.size());
+  uint8_t h[kHeaderSize] = {};
+  std::memcpy(h, kMagic, 8);
+  const uint32_t version = kFormatVersion, hs = kHeaderSize;
+  const uint64_t fileSize = metaOffset + body.size(), metaSize = body.size();
+  std::memcpy(h + 8, &version, 4), std::memcpy(h + 12, &hs, 4);
+  std::memcpy(h + 16, &fileSize, 8), std::memcpy(h + 24, &metaOffset, 8), std::memcpy(h + 32, &metaSize, 8);
+  const auto ms = sha256(body);
+  std::memcpy(h + 40, ms.data(), 32);
+  const auto hsha = sha256(std::span<const uint8_t>(h, 96));
+  std::memcpy(h + 96, hsha.data(), 32);
+  writeAt(0, h, kHeaderSize);
+  if (std::fflush(f_) != 0 || ::fsync(::fileno(f_)) != 0) throw Error(path_ + ": flush failed: " + std::strerror(errno));
+  std::fclose(f_);
+  f_ = nullptr;
+  std::error_code ec;
+  std::filesystem::rename(tmp_, path_, ec);
+  if (ec) throw Error(path_ + ": cannot rename '" + tmp_ + "': " + ec.message());
+  done_ = true;
+}
+
+PagingFile::PagingFile(std::string path) : path_(std::move(path)) {
+  fd_ = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd_ < 0) throw Error(path_ + ": cannot open: " + std::strerror(errno));
+  struct stat st{};
+  if (::fstat(fd_, &st) != 0) throw Error(path_ + ": cannot stat: " + std::strerror(errno));
+  fileSize_ = uint64_t(st.st_size);
+  uint8_t h[kHeaderSize];
+  if (fileSize_ < kHeaderSize || ::pread(fd_, h, kHeaderSize, 0) != ssize_t(kHeaderSize))
+    throw Error(path_ + ": truncated: " + std::to_string(fileSize_) + " bytes, shorter than the 128-byte header");
+  if (std::memcmp(h, kMagic, 8) != 0) throw Error(path_ + ": not a Tessera atlas tree file (bad magic)");
+  const auto hsha = sha256(std::span<const uint8_t>(h, 96));
+  if (std::memcmp(hsha.data(), h + 96, 32) != 0) throw Error(path_ + ": header checksum mismatch (corrupted header)");
+  uint32_t version, hs;
+  uint64_t size, metaOffset, metaSize;
+  std::memcpy(&version, h + 8, 4), std::memcpy(&hs, h + 12, 4);
+  std::memcpy(&size, h + 16, 8), std::memcpy(&metaOffset, h + 24, 8), std::memcpy(&metaSize, h + 32, 8);
+  if (version != kFormatVersion) throw Error(path_ + ": format version " + std::to_string(version) + " (this reader knows 1)");
+  if (hs != kHeaderSize) throw Error(path_ + ": header size " + std::to_string(hs) + " (expected 128)");
+  if (size != fileSize_)
+    throw Error(path_ + ": file is " + std::to_string(fileSize_) + " bytes but the header says " + std::to_string(size) +
+                (fileSize_ < size ? " (truncated)" : " (trailing bytes)"));
+  if (metaOffset < kHeaderSize || metaOffset > size || metaSize != size - metaOffset)
+    throw Error(path_ + ": metadata range [" + std::to_string(metaOffset) + ", +" + std::to_string(metaSize) + ") is invalid");
+  std::vector<uint8_t> body(metaSize);
+  if (metaSize && ::pread(fd_, body.data(), metaSize, off_t(metaOffset)) != ssize_t(metaSize))
+    throw Error(path_ + ": cannot read the metadata");
+  const auto ms = sha256(body);
+  if (std::memcmp(ms.data(), h + 40, 32) != 0) throw Error(path_ + ": metadata checksum mismatch (corrupted node table or geometry)");
+  meta_ = deserialize(body, path_);
+  validateMeta(meta_, path_, metaOffset);
+}
+
+PagingFile::~PagingFile() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+std::vector<uint8_t> PagingFile::readBlock(uint32_t index) const {
+  if (index >= meta_.blocks.size())
+    throw Error(path_ + ": block " + std::to_string(index) + " out of range (" + std::to_string(meta_.blocks.size()) + " blocks)");
+  const BlockInfo& b = meta_.blocks[index];
+  std::vector<uint8_t> bytes(b.size);
+  size_t done = 0;
+  while (done < b.size) {
+    const ssize_t r = ::pread(fd_, bytes.data() + done, b.size - done, off_t(b.offset + done));
+    if (r <= 0) throw Error(path_ + ": block " + std::to_string(index) + ": read failed");
+    done += size_t(r);
+  }
+  if (sha256(bytes) != b.sha256)
+    throw Error(path_ + ": block " + std::to_string(index) + " (" + blockKindName(b.kind) + ", node/image " +
+                std::to_string(b.node) + "): checksum mismatch");
+  return bytes;
+}
+
+std::vector<uint8_t> PagingFile::readImage(uint32_t image) const {
+  if (image >= meta_.images.size()) throw Error(path_ + ": image " + std::to_string(image) + " out of range");
+  const ImageRecord& r = meta_.images[image];
+  std::vector<uint8_t> out(size_t(r.width) * r.height * r.channels);
+  const size_t rowBytes = size_t(r.width) * r.channels;
+  for (uint32_t k = 0; k < r.pieceCount; ++k) {
+    const PieceRecord& p = meta_.pieces[r.firstPiece + k];
+    const std::vector<uint8_t> block = readBlock(p.block);
+    std::memcpy(out.data() + p.row0 * rowBytes, block.data() + p.offset, p.rows * rowBytes);
+  }
+  return out;
+}
+
+std::vector<uint8_t> PagingFile::readAtlas(uint32_t tree, uint32_t node, uint32_t layer) const {
+  if (tree >= meta_.trees.size() || node >= meta_.trees[tree].nodes.size() || layer >= meta_.layerCount)
+    throw Error(path_ + ": atlas (tree " + std::to_string(tree) + ", node " + std::to_string(node) + ", layer " +
+                std::to_string(layer) + ") out of range");
+  return readBlock(meta_.trees[tree].atlasBlocks[size_t(node) * meta_.layerCount + layer]);
+}
+
+}  // namespace tessera::mta

@@ -1,0 +1,113 @@
+// The paging file of a texture atlas tree (docs/mta-format.md): one file holding the node tables,
+// the geometry, every node atlas and every original texture, in blocks with SHA-256 checksums.
+//
+// Implements: a streaming writer (blocks are appended as they are produced to path.tmp-<pid>, the
+// metadata and the header last, then renamed) and a reader that validates the header, the metadata
+// checksum and every cross-reference before returning, and verifies each block's checksum when it is
+// read. The runtime streams blocks through PagingFile::readBlock.
+// Does not implement: building (build.h), rendering or caching policy.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <cstdio>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "mta/params.h"
+#include "mta/scene.h"
+#include "mta/tree.h"
+
+namespace tessera::mta {
+
+constexpr uint32_t kFormatVersion = 1;
+constexpr uint32_t kHeaderSize = 128;
+
+enum class BlockKind : uint8_t { Atlas = 1, Original = 2 };
+const char* blockKindName(BlockKind k);
+
+struct BlockInfo {
+  uint64_t offset = 0, size = 0;
+  BlockKind kind = BlockKind::Atlas;
+  uint8_t tree = 0, layer = 0;  // Atlas: tree and layer
+  uint32_t node = 0;            // Atlas: node; Original: first image in the block
+  std::array<uint8_t, 32> sha256{};
+};
+
+// One image is stored once, top row first, `channels` (3 or 4) bytes per texel, as row ranges (pieces)
+// in Original blocks of about atlas size.
+struct ImageRecord {
+  uint32_t width = 0, height = 0, channels = 0;
+  uint32_t firstPiece = 0, pieceCount = 0;
+  std::string name;
+};
+struct PieceRecord {
+  uint32_t image = 0, block = 0, row0 = 0, rows = 0;
+  uint64_t offset = 0;  // byte offset of row row0 inside the block
+};
+
+struct BuildStats {
+  uint64_t trianglesIn = 0, trianglesOut = 0, criticalAtRequested = 0, criticalAfterRaise = 0, trianglesAdded = 0;
+  uint32_t maxSplitDepth = 0;
+  double dMinRequested = 0.0, dMinUsed = 0.0, sceneDiagonal = 0.0;
+};
+
+// Everything but the block payloads.
+struct MtaMeta {
+  BuildParams params;  // memoryLimit, threads and progress are not stored
+  uint32_t layerCount = 1;
+  BuildStats stats;
+  std::vector<SceneTexture> textures;
+  std::vector<ImageRecord> images;
+  std::vector<PieceRecord> pieces;
+  std::vector<BlockInfo> blocks;
+  std::vector<Tree> trees;  // 0..2: the RGB tree and / or the RGBA tree (Tree::alpha)
+};
+
+class PagingFileWriter {
+ public:
+  explicit PagingFileWriter(std::string path);  // creates path.tmp-<pid>; throws Error on failure
+  ~PagingFileWriter();                           // removes the temporary file unless finish() succeeded
+  PagingFileWriter(const PagingFileWriter&) = delete;
+  PagingFileWriter& operator=(const PagingFileWriter&) = delete;
+  // Appends a block (16-byte aligned) and returns its index.
+  uint32_t addBlock(BlockKind kind, uint8_t tree, uint8_t layer, uint32_t node, std::span<const uint8_t> bytes);
+  uint64_t bytesWritten() const { return end_; }
+  // meta.blocks is replaced by the blocks added. Writes metadata and header, then renames.
+  void finish(MtaMeta& meta);
+
+ private:
+  void writeAt(uint64_t offset, const void* data, size_t size);
+  std::string path_, tmp_;
+  std::FILE* f_ = nullptr;
+  uint64_t end_ = kHeaderSize;
+  std::vector<BlockInfo> blocks_;
+  bool done_ = false;
+};
+
+class PagingFile {
+ public:
+  // Reads and validates the header and the metadata (checksum, sizes, every index, node ranges).
+  // Throws Error naming the file, the field and the reason.
+  explicit PagingFile(std::string path);
+  ~PagingFile();
+  PagingFile(const PagingFile&) = delete;
+  PagingFile& operator=(const PagingFile&) = delete;
+  const MtaMeta& meta() const { return meta_; }
+  uint64_t fileSize() const { return fileSize_; }
+  // The payload of block i, checksum verified (Error on mismatch or I/O failure). Thread-safe (pread).
+  std::vector<uint8_t> readBlock(uint32_t index) const;
+  // Image i reassembled from its pieces (top row first, channels bytes per texel).
+  std::vector<uint8_t> readImage(uint32_t image) const;
+  // The atlas texels of (tree, node, layer): A x A x channels.
+  std::vector<uint8_t> readAtlas(uint32_t tree, uint32_t node, uint32_t layer = 0) const;
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+  uint64_t fileSize_ = 0;
+  MtaMeta meta_;
+};
+
+}  // namespace tessera::mta

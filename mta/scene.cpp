@@ -1,0 +1,81 @@
+#include "mta/scene.h"
+
+#include <cmath>
+#include <map>
+#include <tuple>
+
+#include "raster/command_list.h"
+
+namespace tessera::mta {
+
+void Scene::validate() const {
+  const size_t n = geometry.triangleCount();
+  auto fail = [&](const std::string& what) { throw Error("mta scene '" + name + "': " + what); };
+  if (geometry.positions.size() != n * 3) fail("positions are not 3 per triangle");
+  if (geometry.source.size() != n || geometry.alpha.size() != n) fail("source/alpha arrays are not one per triangle");
+  if (geometry.layers.empty()) fail("no texture layer");
+  for (size_t l = 0; l < geometry.layers.size(); ++l) {
+    const SceneLayer& L = geometry.layers[l];
+    if (L.texture.size() != n || L.uv.size() != n * 3) fail("layer " + std::to_string(l) + ": arrays do not match the triangle count");
+    for (size_t t = 0; t < n; ++t) {
+      if (L.texture[t] < -1 || L.texture[t] >= int64_t(textures.size()))
+        fail("layer " + std::to_string(l) + " triangle " + std::to_string(t) + ": texture " + std::to_string(L.texture[t]) + " out of range");
+      for (int k = 0; k < 3; ++k)
+        if (!std::isfinite(L.uv[t * 3 + k].u) || !std::isfinite(L.uv[t * 3 + k].v))
+          fail("layer " + std::to_string(l) + " triangle " + std::to_string(t) + ": non-finite texcoord");
+    }
+  }
+  for (size_t i = 0; i < geometry.positions.size(); ++i) {
+    const Float3& p = geometry.positions[i];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) fail("triangle " + std::to_string(i / 3) + ": non-finite position");
+  }
+  for (size_t t = 0; t < textures.size(); ++t) {
+    if (textures[t].image >= images.size()) fail("texture " + std::to_string(t) + ": image index out of range");
+  }
+  for (size_t i = 0; i < images.size(); ++i)
+    if (images[i].width == 0 || images[i].height == 0 || images[i].width > 65536 || images[i].height > 65536)
+      fail("image " + std::to_string(i) + " '" + images[i].name + "': size " + std::to_string(images[i].width) + "x" +
+           std::to_string(images[i].height) + " outside [1, 65536]");
+}
+
+Scene sceneFromModel(std::shared_ptr<const model::Model> m) {
+  Scene s;
+  s.name = m->source;
+  s.images.resize(m->textures.size());
+  for (size_t i = 0; i < m->textures.size(); ++i) {
+    const model::TextureInfo info = model::probeTexture(*m, i);
+    s.images[i] = SceneImage{info.width, info.height, m->textures[i].name};
+  }
+  std::map<std::tuple<uint32_t, int, int>, int32_t> texIndex;  // (image, wrapS, wrapT) -> texture, in first-use order
+  Geometry& g = s.geometry;
+  g.layers.resize(1);
+  for (const model::Mesh& mesh : m->meshes) {
+    const model::Material& mat = m->materials[mesh.material];
+    int32_t tex = -1;
+    if (mat.baseColorTexture >= 0 && !mesh.texcoords.empty()) {
+      const auto key = std::make_tuple(uint32_t(mat.baseColorTexture), int(mat.wrapS), int(mat.wrapT));
+      auto it = texIndex.find(key);
+      if (it == texIndex.end()) {
+        it = texIndex.emplace(key, int32_t(s.textures.size())).first;
+        s.textures.push_back(SceneTexture{uint32_t(mat.baseColorTexture), mat.wrapS, mat.wrapT});
+      }
+      tex = it->second;
+    }
+    const uint8_t alpha = mat.alphaMode == model::AlphaMode::Opaque ? 0 : 1;
+    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t idx = mesh.indices[t * 3 + k];
+        g.positions.push_back(mesh.positions[idx]);
+        g.layers[0].uv.push_back(tex >= 0 ? mesh.texcoords[idx] : Float2{});
+      }
+      g.layers[0].texture.push_back(tex);
+      g.source.push_back(uint32_t(g.source.size()));
+      g.alpha.push_back(alpha);
+    }
+  }
+  s.loadImage = [m](uint32_t image) { return model::loadTexture(*m, image); };
+  s.validate();
+  return s;
+}
+
+}  // namespace tessera::mta

@@ -1,0 +1,163 @@
+// The synthetic city generator: small "berlin" and "chemnitz" cities round-trip through loadModel
+// with the expected counts, and the bytes of every file depend only on the options.
+#include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "model/city_gen.h"
+#include "model/model.h"
+#include "model_test_util.h"
+
+namespace tessera::model {
+namespace {
+
+using testing::ScratchDir;
+
+CitySummary generate(CityPreset preset, uint32_t buildings, uint64_t seed, const std::string& dir,
+                     uint32_t textureSize = 64, CityImageFormat format = CityImageFormat::Png) {
+  CityOptions o;
+  o.preset = preset;
+  o.buildings = buildings;
+  o.seed = seed;
+  o.textureSize = textureSize;
+  o.format = format;
+  o.outDir = dir;
+  o.progress = false;
+  return generateCity(o);
+}
+
+bool isPowerOfTwo(uint32_t v) { return v && !(v & (v - 1)); }
+
+TEST(CityGenerator, SmallBerlinRoundTripsWithOneFacadeTexturePerBuilding) {
+  ScratchDir dir;
+  const CitySummary s = generate(CityPreset::Berlin, 6, 7, dir / "out");
+  EXPECT_EQ(s.textures, 7u);            // 6 facades + the street
+  EXPECT_EQ(s.triangles, 6u * 10 + 2);  // 4 walls + roof per building, 2 ground triangles
+  EXPECT_EQ(s.files.size(), 7u + 2);
+  const Model m = loadModel(s.gltf);
+  EXPECT_EQ(m.textures.size(), 7u);
+  EXPECT_EQ(m.materials.size(), 7u);
+  EXPECT_EQ(m.meshes.size(), 7u);
+  EXPECT_EQ(m.triangleCount(), s.triangles);
+  std::vector<int> uses(7, 0);
+  for (const Mesh& mesh : m.meshes) {
+    ++uses[size_t(m.materials[mesh.material].baseColorTexture)];
+    ASSERT_EQ(mesh.texcoords.size(), mesh.positions.size());
+    float maxU = 0;
+    for (const Float2& t : mesh.texcoords) maxU = std::max(maxU, t.u);
+    EXPECT_GT(maxU, 1.0f) << mesh.name << ": the facade texture repeats around the building";
+  }
+  for (int u : uses) EXPECT_EQ(u, 1);
+  // Buildings stand on a grid: node translations are applied.
+  EXPECT_GT(m.bounds.max.x - m.bounds.min.x, 40.0f);
+  EXPECT_EQ(m.bounds.min.y, 0.0f);
+  for (size_t i = 0; i < m.textures.size(); ++i) {
+    const Image img = loadTexture(m, i);
+    EXPECT_EQ(img.width, 64u);
+    EXPECT_EQ(img.fileChannels, 3);
+  }
+}
+
+TEST(CityGenerator, SmallChemnitzRoundTripsWithRgbaPartsOddSizesAndTwoThousandRepeatsOnOneTriangle) {
+  ScratchDir dir;
+  const CitySummary s = generate(CityPreset::Chemnitz, 8, 3, dir / "out");
+  EXPECT_EQ(s.textures, 5u * 8);
+  EXPECT_GT(s.rgbaTextures, 0u);
+  const Model m = loadModel(s.gltf);
+  EXPECT_EQ(m.textures.size(), s.textures);
+  EXPECT_EQ(m.triangleCount(), s.triangles);
+  EXPECT_EQ(m.meshes.size(), s.primitives);
+  size_t mask = 0, blend = 0;
+  for (const Material& mat : m.materials)
+    mask += mat.alphaMode == AlphaMode::Mask, blend += mat.alphaMode == AlphaMode::Blend;
+  EXPECT_GT(mask, 0u);
+  EXPECT_GT(blend, 0u);
+  // Some single triangle spans 2000 texture repeats.
+  float maxSpan = 0;
+  for (const Mesh& mesh : m.meshes)
+    for (size_t t = 0; t < mesh.indices.size(); t += 3) {
+      float lo = 1e30f, hi = -1e30f;
+      for (int k = 0; k < 3; ++k)
+        lo = std::min(lo, mesh.texcoords[mesh.indices[t + k]].u),
+        hi = std::max(hi, mesh.texcoords[mesh.indices[t + k]].u);
+      maxSpan = std::max(maxSpan, hi - lo);
+    }
+  EXPECT_EQ(maxSpan, 2000.0f);
+  // RGBA textures decode with alpha in use; some texture is not a power of two.
+  bool anyAlpha = false, anyOdd = false;
+  for (size_t i = 0; i < m.textures.size(); ++i) {
+    const TextureInfo info = probeTexture(m, i);
+    anyOdd = anyOdd || !isPowerOfTwo(info.width) || !isPowerOfTwo(info.height);
+    if (info.channels == 4) anyAlpha = anyAlpha || loadTexture(m, i).usesAlpha;
+  }
+  EXPECT_TRUE(anyAlpha);
+  EXPECT_TRUE(anyOdd);
+}
+
+void expectSameFiles(const std::string& a, const std::string& b, const std::vector<std::string>& files) {
+  for (const std::string& f : files) EXPECT_EQ(testing::readFile(a + "/" + f), testing::readFile(b + "/" + f)) << f;
+}
+
+TEST(CityGenerator, TheSameSeedGivesIdenticalBytesInEveryFileForAnyThreadCount) {
+  ScratchDir dir;
+  for (CityPreset p : {CityPreset::Berlin, CityPreset::Chemnitz}) {
+    const CitySummary a = generate(p, 5, 11, dir / "a");
+    CitySummary b;
+    tbb::task_arena one(1);
+    one.execute([&] { b = generate(p, 5, 11, dir / "b"); });
+    ASSERT_EQ(a.files, b.files);
+    EXPECT_EQ(a.bytesOnDisk, b.bytesOnDisk);
+    expectSameFiles(dir / "a", dir / "b", a.files);
+  }
+}
+
+TEST(CityGenerator, ADifferentSeedGivesDifferentGeometryAndTextures) {
+  ScratchDir dir;
+  for (CityPreset p : {CityPreset::Berlin, CityPreset::Chemnitz}) {
+    const CitySummary a = generate(p, 5, 11, dir / "a"), b = generate(p, 5, 12, dir / "b");
+    const std::string bin = std::string(cityPresetName(p)) + ".bin";
+    EXPECT_NE(testing::readFile(dir / "a/" + bin), testing::readFile(dir / "b/" + bin));
+    size_t differing = 0;
+    for (const std::string& f : a.files)
+      if (f.starts_with("textures/"))
+        differing += testing::readFile(dir / "a/" + f) != testing::readFile(dir / "b/" + f);
+    EXPECT_GT(differing, 0u);
+  }
+}
+
+TEST(CityGenerator, JpegFormatWritesRgbTexturesAsJpegAndKeepsRgbaTexturesPng) {
+  ScratchDir dir;
+  const CitySummary s = generate(CityPreset::Chemnitz, 4, 1, dir / "out", 64, CityImageFormat::Jpg);
+  const Model m = loadModel(s.gltf);
+  size_t jpg = 0, png = 0;
+  for (size_t i = 0; i < m.textures.size(); ++i) {
+    const TextureInfo info = probeTexture(m, i);
+    if (info.format == "jpeg") {
+      ++jpg;
+      EXPECT_EQ(info.channels, 3);
+    } else if (info.format == "png") {
+      ++png;
+      EXPECT_EQ(info.channels, 4);
+    }
+  }
+  EXPECT_EQ(jpg, s.textures - s.rgbaTextures);
+  EXPECT_EQ(png, s.rgbaTextures);
+}
+
+TEST(CityGenerator, BadOptionsAreClearErrors) {
+  ScratchDir dir;
+  EXPECT_THROW(parseCityPreset("paris"), Error);
+  CityOptions o;
+  o.outDir = dir / "out";
+  o.textureSize = 3;
+  EXPECT_THROW(generateCity(o), Error);
+  o.textureSize = 64;
+  o.outDir = "/proc/tessera-cannot-write-here";
+  o.buildings = 1;
+  EXPECT_THROW(generateCity(o), Error);
+}
+
+}  // namespace
+}  // namespace tessera::model
