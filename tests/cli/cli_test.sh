@@ -75,6 +75,24 @@ PY
     for c in scenes render replay validate golden demo; do grep -q "$c" help.txt || fail "--help lacks $c"; done
     "$tessera" render --help | grep -q -- "--record" || fail "render --help lacks --record"
     ;;
+  city_and_atlas_tree_build_end_to_end)
+    "$tessera" city --preset berlin --buildings 6 --seed 3 -o city --quiet > city.json
+    gltf=$(ls city/*.gltf | head -1)
+    [ -n "$gltf" ] || fail "no .gltf written"
+    "$tessera" mta build "$gltf" -o tree.mta --d-min 50 --quiet > build.json
+    "$tessera" mta info tree.mta > info.json 2> /dev/null
+    [ "$(json_field info.json "['triangles']")" -ge 1 ] || fail "info reports no triangles"
+    [ "$(json_field info.json "['blocks']['atlas']['count']")" -ge 1 ] || fail "info reports no atlas blocks"
+    ;;
+  corrupted_atlas_tree_is_a_clear_error)
+    "$tessera" city --preset berlin --buildings 4 -o city --quiet > /dev/null
+    "$tessera" mta build "$(ls city/*.gltf | head -1)" -o tree.mta --d-min 50 --quiet > /dev/null
+    size=$(stat -c %s tree.mta)
+    head -c $((size / 2)) tree.mta > cut.mta
+    if "$tessera" mta info cut.mta > /dev/null 2> err.txt; then fail "accepted a truncated tree"; fi
+    grep -q "cut.mta" err.txt || fail "message does not name the file: $(cat err.txt)"
+    ! grep -qi "internal error" err.txt || fail "crashed: $(cat err.txt)"
+    ;;
   *) fail "unknown case $case_name" ;;
 esac
 echo "ok: $case_name"
