@@ -10,26 +10,11 @@
 #include "raster/cpu_backend.h"
 #include "raster/image_io.h"
 #include "raster/serialize.h"
+#include "verify/atomic_file.h"
 
 namespace tessera::cli {
 
-void writeTextFile(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) throw Error(path + ": cannot open for writing");
-    f << text;
-    f.flush();
-    if (!f) {
-      std::remove(tmp.c_str());
-      throw Error(path + ": write failed");
-    }
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw Error(path + ": cannot rename the finished temporary file into place");
-  }
-}
+void writeTextFile(const std::string& path, const std::string& text) { verify::writeTextAtomically(path, text); }
 
 std::pair<int, int> parseSize(const std::string& text, const char* option) {
   int w = 0, h = 0;
