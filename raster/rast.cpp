@@ -39,7 +39,7 @@ void runClear(const Scene& scene, const ClearCmd& c, TextureData* tex, const Til
   const int32_t x0 = std::max(tile.x0, c.rect.x), x1 = std::min(tile.x1, c.rect.x + c.rect.w - 1);
   const int32_t y0 = std::max(tile.y0, c.rect.y), y1 = std::min(tile.y1, c.rect.y + c.rect.h - 1);
   if (x0 > x1 || y0 > y1) return;
-  uint8_t value[16];
+  uint8_t value[16] = {};
   encodeClear(tex->desc.format, c.bits, value);
   // Provenance: a clear is exact, except that GL may convert a unorm clear colour in float32, where
   // c * 255 can round onto a .5 tie (0.9f * 255 = 229.5 in float, 229.4999... exactly): then either
@@ -139,18 +139,7 @@ class TriangleRasterizer {
     q.x = qx, q.y = qy, q.coverage = cov;
     auto& z = s_.depth[n];
     uint8_t live = cov;
-    for (int p = 0; p < 4; ++p) {
-      // GL 4.6 §14.6.1: barycentrics from the exact edge values; perspective weights e_i / w_i.
-      const double ed[3] = {double(e[p][0]), double(e[p][1]), double(e[p][2])};
-      const double w0 = ed[0] * t_.invW[0], w1 = ed[1] * t_.invW[1], w2 = ed[2] * t_.invW[2];
-      const double sum = w0 + w1 + w2;
-      const double b0 = w0 / sum, b1 = w1 / sum, b2 = w2 / sum;
-      for (int k = 0; k < ds_.varyings; ++k)
-        q.var[p][k] = float(b0 * t_.var[0][k] + b1 * t_.var[1][k] + b2 * t_.var[2][k]);
-      // Depth is interpolated without perspective (§14.6.1, eq. 14.10).
-      const double area = double(t_.area2);
-      z[p] = float((ed[0] * t_.z[0] + ed[1] * t_.z[1] + ed[2] * t_.z[2]) / area);
-    }
+    for (int p = 0; p < 4; ++p) z[p] = interpolatePixel(t_, ds_.varyings, e[p], q.var[p]);
     const TargetView& tv = scene_.target;
     if (ds_.depth.test && tv.depth) {
       for (int p = 0; p < 4; ++p) {

@@ -36,6 +36,19 @@ struct TileRect {
 // and interval bookkeeping in the targets' Provenance images.
 void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const TileRect& tile, PipelineStats& stats);
 
+// Interpolates one pixel (GL 4.6 §14.6.1) from its exact edge values e[i] (opposite vertex i):
+// perspective-correct varyings b_i = (e_i / w_i) / sum, each rounded to float once, and depth without
+// perspective, z = sum(e_i z_i) / 2A. Shared by the fast and the provenance path so their values
+// are the same bytes by construction (helper pixels extrapolate the same way).
+inline float interpolatePixel(const TriSetup& t, int varyings, const int64_t (&e)[3], float* var) {
+  const double ed[3] = {double(e[0]), double(e[1]), double(e[2])};
+  const double w0 = ed[0] * t.invW[0], w1 = ed[1] * t.invW[1], w2 = ed[2] * t.invW[2];
+  const double sum = w0 + w1 + w2;
+  const double b0 = w0 / sum, b1 = w1 / sum, b2 = w2 / sum;
+  for (int k = 0; k < varyings; ++k) var[k] = float(b0 * t.var[0][k] + b1 * t.var[1][k] + b2 * t.var[2][k]);
+  return float((ed[0] * t.z[0] + ed[1] * t.z[1] + ed[2] * t.z[2]) / double(t.area2));
+}
+
 inline float loadDepth(const TextureData& d, uint32_t level, uint32_t layer, int32_t x, int32_t y) {
   float z;
   std::memcpy(&z, d.texel(level, layer, uint32_t(x), uint32_t(y)), sizeof z);

@@ -275,15 +275,7 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
 
       float z[4];
       quad.x = qx, quad.y = qy, quad.coverage = cov;
-      for (int p = 0; p < 4; ++p) {
-        const double ed[3] = {double(e[p][0]), double(e[p][1]), double(e[p][2])};
-        const double w0 = ed[0] * t.invW[0], w1 = ed[1] * t.invW[1], w2 = ed[2] * t.invW[2];
-        const double sum = w0 + w1 + w2;
-        const double b0 = w0 / sum, b1 = w1 / sum, b2 = w2 / sum;
-        for (int k = 0; k < ds.varyings; ++k)
-          quad.var[p][k] = float(b0 * t.var[0][k] + b1 * t.var[1][k] + b2 * t.var[2][k]);
-        z[p] = float((ed[0] * t.z[0] + ed[1] * t.z[1] + ed[2] * t.z[2]) / area);
-      }
+      for (int p = 0; p < 4; ++p) z[p] = interpolatePixel(t, ds.varyings, e[p], quad.var[p]);
 
       uint8_t pass = cov | tie, nearDepth = 0;
       if (depthTest) {
