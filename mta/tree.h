@@ -29,7 +29,7 @@ struct AtlasEntry {
 
 struct Node {
   std::array<float, 6> bounds{};  // min x, y, z, max x, y, z of the node's triangles
-  float minDistance = 0.0f;       // leaves: d_min used; inner: 2 · max(children)
+  float minDistance = 0.0f;       // leaves: d_min used; inner: 2 · max(children), capped leaves counted at d_min · cap factor
   uint32_t level = 0;             // k; texture matrix = diag(2^k, 2^k)
   uint32_t cellX = 0, cellY = 0;  // R(N) = [cellX, cellX + 1] x [cellY, cellY + 1] / 2^k in root-atlas coords
   std::array<int32_t, 4> children{-1, -1, -1, -1};  // by quadrant; -1 = none (only when < 4 triangles split)

@@ -26,7 +26,8 @@ double toLocal(double root, uint32_t level) {
 }
 
 bool layoutAtlas(const Scene& s, const Geometry& g, std::span<const uint32_t> tris, const std::vector<TexelSize>& sizes,
-                 const BuildParams& p, std::vector<AtlasEntry>& entries, double& coverage) {
+                 const BuildParams& p, std::vector<AtlasEntry>& entries, double& coverage, double* capFactor) {
+  if (capFactor) *capFactor = 1.0;
   const SceneLayer& L = g.layers[0];
   std::vector<std::pair<int32_t, uint32_t>> byTex;  // (texture, triangle): sorted, a total order
   byTex.reserve(tris.size());
@@ -53,6 +54,10 @@ bool layoutAtlas(const Scene& s, const Geometry& g, std::span<const uint32_t> tr
     }
     const SceneImage& img = s.images[s.textures[tex].image];
     const AreaRequirement r = requiredArea(need, rect, img.width, img.height, p.border);
+    // How far the image's own size caps the need: the atlas area meets τ only from this factor times
+    // d_min on (the originals do not either, closer), which the parents' minDistance must respect.
+    if (capFactor && !need.constant)
+      *capFactor = std::max(*capFactor, std::max(need.w / double(img.width), need.h / double(img.height)));
     entries.push_back(AtlasEntry{tex, r.source, 0, 0, r.w, r.h});
     rects.push_back(PackRect{r.w, r.h});
   }
@@ -69,6 +74,7 @@ struct BuildNode {
   std::vector<uint32_t> tris;
   std::vector<AtlasEntry> entries;
   double coverage = 0.0;
+  double capFactor = 1.0;  // leaves: see layoutAtlas
   std::array<std::unique_ptr<BuildNode>, 4> children;
   bool leaf = true;
 };
@@ -81,7 +87,7 @@ struct Ctx {
 };
 
 void buildRecursive(const Ctx& c, BuildNode& n, uint32_t level) {
-  if (layoutAtlas(c.s, c.g, n.tris, c.sizes, c.p, n.entries, n.coverage)) return;
+  if (layoutAtlas(c.s, c.g, n.tris, c.sizes, c.p, n.entries, n.coverage, &n.capFactor)) return;
   if (n.tris.size() < 2)
     throw Error("mta: triangle " + std::to_string(c.g.source[n.tris[0]]) +
                 " does not fit an atlas on its own (critical-triangle handling missed it)");
@@ -124,10 +130,12 @@ struct Flattener {
       double cov = 0.0, minD = 0.0;
       for (int q = 0; q < 4; ++q) {
         if (!b.children[q]) continue;
+        // A leaf whose need was capped by an image's size meets τ only from d_min · capFactor on.
+        const double childTauDistance = b.children[q]->leaf ? dMin * b.children[q]->capFactor : 0.0;
         const int32_t child = visit(*b.children[q], id, level + 1, cellX * 2 + (q & 1), cellY * 2 + (q >> 1));
         tree.nodes[id].children[q] = child;
         cov += tree.nodes[child].coverage;
-        minD = std::max(minD, double(tree.nodes[child].minDistance));
+        minD = std::max(minD, std::max(double(tree.nodes[child].minDistance), childTauDistance));
         b.children[q].reset();
       }
       tree.nodes[id].coverage = float(cov / 4.0);

@@ -299,6 +299,7 @@ struct CpuBackend::Impl {
     for (size_t c = 0; c < chunks; ++c) appendToScene(sinks[c], scene, stats);
   }
 
+  bool executed = false;
   void run(const CommandList& list) {
     for (const Command& cmd : list.commands()) {
       std::visit([&](const auto& c) { apply(list, c); }, cmd);
@@ -372,6 +373,14 @@ CpuBackend::~CpuBackend() = default;
 
 void CpuBackend::execute(const CommandList& list, std::string_view frameName) {
   validateOrThrow(list, frameName);
+  // A list is a whole frame that starts from GL's initial state (command_list.h): nothing of an earlier
+  // execute() may leak into it, so a backend reused for a sequence of frames starts afresh each time.
+  if (impl_->executed) {
+    const RenderOptions options = impl_->options;
+    impl_ = std::make_unique<Impl>();
+    impl_->options = options;
+  }
+  impl_->executed = true;
   const int threads = impl_->options.threads > 0 ? impl_->options.threads : tbb::this_task_arena::max_concurrency();
   tbb::task_arena arena(threads);
   arena.execute([&] { impl_->run(list); });

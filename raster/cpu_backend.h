@@ -38,7 +38,8 @@ class CpuBackend {
   CpuBackend(const CpuBackend&) = delete;
   CpuBackend& operator=(const CpuBackend&) = delete;
 
-  // Validates the list (throws Error naming `frameName` and the command index) and runs it.
+  // Validates the list (throws Error naming `frameName` and the command index) and runs it from GL's
+  // initial state: resources and state of an earlier execute() are dropped first.
   void execute(const CommandList& list, std::string_view frameName = "frame");
 
   const TextureData* texture(ResourceId id) const;

@@ -2,6 +2,7 @@
 # End-to-end tests of the `tessera` CLI, one case per ctest test: cli_test.sh CASE TESSERA WORKDIR
 set -euo pipefail
 case_name=$1; tessera=$2; work=$3/$1
+src=$(cd "$(dirname "$0")/../.." && pwd)
 rm -rf "$work"; mkdir -p "$work"; cd "$work"
 fail() { echo "FAIL: $*" >&2; exit 1; }
 json_field() { python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print(eval('d'+sys.argv[2]))" "$1" "$2"; }
@@ -92,6 +93,50 @@ PY
     if "$tessera" mta info cut.mta > /dev/null 2> err.txt; then fail "accepted a truncated tree"; fi
     grep -q "cut.mta" err.txt || fail "message does not name the file: $(cat err.txt)"
     ! grep -qi "internal error" err.txt || fail "crashed: $(cat err.txt)"
+    ;;
+  atlas_tree_goldens_reproduce_bit_exactly)
+    # Includes the built-in scenes; the railway frames need ../shared/data/railway.glb beside the repo.
+    "$tessera" golden check --dir "$src/golden" --railway "$src/../shared/data/railway.glb" > check.json \
+      || fail "golden check failed: $(cat check.json)"
+    [ "$(json_field check.json "['passed']")" -ge 16 ] || fail "fewer goldens than expected: $(cat check.json)"
+    ;;
+  atlas_tree_render_runs_and_texel_end_to_end)
+    "$tessera" city --preset berlin --buildings 9 --seed 5 -o city --quiet > /dev/null
+    "$tessera" mta build city/*.gltf -o tree.mta --d-min 40 --quiet > /dev/null
+    "$tessera" mta render tree.mta --frames 40 --size 160x120 --capacity 8 --budget 2blocks --save-every 20 -o render --quiet > render.json
+    for f in frames.json plot.png frame_0000.png frame_0020.png frame_0039.png; do [ -s "render/$f" ] || fail "render did not write $f"; done
+    python3 - render/frames.json <<'PY' || fail "frames.json is inconsistent"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert len(d["frames"]) == 40
+for f in d["frames"]:
+    for k in ("texture_binds", "texture_state_changes", "draw_calls", "nodes_with_atlas", "nodes_with_original_textures",
+              "blocks_resident", "bytes_resident", "capacity_bytes", "blocks_loaded", "frame_time_ms"):
+        assert k in f, k
+    assert f["bytes_resident"] <= f["capacity_bytes"]
+assert d["summary"]["peak_bytes_resident"] <= d["summary"]["capacity_bytes"]
+PY
+    # Same path and budget, another thread count: the same frames.
+    "$tessera" mta render tree.mta --frames 40 --size 160x120 --capacity 8 --budget 2blocks --save-every 0 --threads 1 -o render1 --quiet > /dev/null
+    python3 -c "import json,sys; a,b=[[f['image_sha256'] for f in json.load(open(p))['frames']] for p in sys.argv[1:]]; assert a==b" \
+      render/frames.json render1/frames.json || fail "frames differ between thread counts"
+    "$tessera" texel tree.mta --frames 20 --size 160x120 --budget unlimited --capacity 512 --save-every 10 -o texel --quiet > texel.json
+    [ "$(json_field texel.json "['magnification_violations_when_every_needed_block_resident']")" = "0" ] || fail "violations: $(cat texel.json)"
+    for f in texel.json histogram.png texel_0000.png texel_0019.png; do [ -s "texel/$f" ] || fail "texel did not write $f"; done
+    "$tessera" mta runs tree.mta --frames 12 --size 128x96 --save-every 0 -o runs --quiet > runs.json
+    for m in original dummy atlas_tree; do
+      [ "$(json_field runs.json "['$m']['draw_calls_max']")" != "" ] || fail "runs lacks $m"
+    done
+    [ -s runs/runs.png ] || fail "runs did not write runs.png"
+    ;;
+  bad_camera_path_is_a_clear_error)
+    "$tessera" city --preset berlin --buildings 4 -o city --quiet > /dev/null
+    "$tessera" mta build city/*.gltf -o tree.mta --d-min 50 --quiet > /dev/null
+    printf 'tessera-camera-path 1\n0 1 2 3 4\n' > bad.path
+    if "$tessera" mta render tree.mta --path bad.path -o out --quiet > /dev/null 2> err.txt; then fail "accepted a bad path"; fi
+    grep -q "bad.path:2" err.txt || fail "message does not name file and line: $(cat err.txt)"
+    if "$tessera" mta render tree.mta --budget 3furlongs -o out --quiet > /dev/null 2> err2.txt; then fail "accepted a bad budget"; fi
+    grep -q -- "--budget" err2.txt || fail "message does not name the option: $(cat err2.txt)"
     ;;
   *) fail "unknown case $case_name" ;;
 esac

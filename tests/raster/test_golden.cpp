@@ -24,10 +24,15 @@ nlohmann::json manifestTests() {
   return j.is_object() && j.contains("tests") ? j["tests"] : nlohmann::json::object();
 }
 
+// Entries of the built-in scenes. The atlas tree's frames ("scene": "mta_railway") need railway.glb and
+// the whole mta runtime; the CLI case atlas_tree_goldens_reproduce_bit_exactly checks them.
+bool isSceneEntry(const nlohmann::json& e) { return e.value("scene", "") != "mta_railway"; }
+
 std::vector<std::string> testNames() {
   std::vector<std::string> names;
   const nlohmann::json tests = manifestTests();
-  for (auto it = tests.begin(); it != tests.end(); ++it) names.push_back(it.key());
+  for (auto it = tests.begin(); it != tests.end(); ++it)
+    if (isSceneEntry(it.value())) names.push_back(it.key());
   return names;
 }
 
@@ -41,7 +46,9 @@ TEST(Golden, EveryScenePresentsOnlyImagesThatHaveAGoldenEntry) {
     images += r.hashes.size();
     EXPECT_TRUE(tests.contains(std::string(s.name))) << s.name << " has no golden image";
   }
-  EXPECT_EQ(images, tests.size()) << "manifest and presented images differ in number: run `tessera golden update`";
+  size_t sceneEntries = 0;
+  for (auto it = tests.begin(); it != tests.end(); ++it) sceneEntries += isSceneEntry(it.value()) ? 1 : 0;
+  EXPECT_EQ(images, sceneEntries) << "manifest and presented images differ in number: run `tessera golden update`";
 }
 
 class GoldenImage : public ::testing::TestWithParam<std::string> {};

@@ -20,6 +20,7 @@
 #include "raster/sha256.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/frame_job.h"
+#include "tools/cli/mta_golden.h"
 #include "tools/scenes/scenes.h"
 
 namespace tessera::cli {
@@ -28,6 +29,7 @@ namespace {
 
 struct GoldenArgs {
   std::string dir = "golden";
+  std::string railway = "../shared/data/railway.glb";
   bool onlyFailing = false;
 };
 
@@ -95,6 +97,57 @@ int runGolden(const GoldenArgs& a, bool update) {
     fs::create_directories(a.dir + "/images", ec);
     if (ec) throw Error(a.dir + "/images: cannot create: " + ec.message());
   }
+  // One presented image against its entry.
+  auto checkImage = [&](const std::string& name, const TextureData& tex, uint32_t level, uint32_t layer, const std::string& scene,
+                        uint32_t attachment, const std::string& command) {
+    seen[name] = true;
+    const auto pixels = imagePixels(tex, level, layer);
+    const std::string hash = sha256Hex(pixels);
+    const std::string file = "images/" + name + imageExtension(tex.desc.format);
+    ++checked;
+    std::string why;
+    uint64_t ndiff = 0;
+    double maxd = 0.0;
+    if (!tests.contains(name)) {
+      why = "no golden entry";
+    } else {
+      const nlohmann::json& e = tests[name];
+      const std::string path = a.dir + "/" + e.value("file", "");
+      std::vector<uint8_t> golden;
+      try {
+        golden = readImage(path).pixels;
+      } catch (const Error& err) {
+        why = err.what();
+      }
+      if (why.empty()) {
+        std::tie(ndiff, maxd) = diffPixels(golden, pixels, tex.desc.format);
+        if (ndiff == ~0ull) why = "golden image has another size or format";
+        else if (ndiff) why = fmt::format("{} pixels differ from {} (max |delta| {})", ndiff, e["file"].get<std::string>(), maxd);
+        else if (e.value("image_sha256", "") != hash) why = "manifest hash differs from the image";
+      }
+    }
+    if (why.empty()) {
+      ++passed;
+      if (!update || a.onlyFailing) return;
+    } else {
+      failed.push_back({{"test", name}, {"reason", why}});
+    }
+    if (!update) return;
+    const std::string oldHash = tests.contains(name) ? tests[name].value("image_sha256", "") : "";
+    writeImage(tex, level, layer, a.dir + "/" + file);
+    tests[name] = {{"file", file},
+                   {"image_sha256", hash},
+                   {"format", std::string(formatName(tex.desc.format))},
+                   {"width", levelWidth(tex.desc, level)},
+                   {"height", levelHeight(tex.desc, level)},
+                   {"scene", scene},
+                   {"attachment", attachment},
+                   {"layer", layer},
+                   {"command", command}};
+    if (oldHash != hash)
+      changed.push_back({{"test", name}, {"old_sha256", oldHash}, {"new_sha256", hash},
+                         {"pixels_changed", ndiff == ~0ull ? -1 : int64_t(ndiff)}, {"max_abs_delta", maxd}});
+  };
   for (const scenes::SceneInfo& s : scenes::all()) {
     const std::string scene(s.name);
     const CommandList list = scenes::build(s.name, s.width, s.height);
@@ -102,56 +155,12 @@ int runGolden(const GoldenArgs& a, bool update) {
     backend.execute(list, scene);
     for (const PresentedImage& p : backend.presented()) {
       const TextureData& tex = *backend.texture(p.texture);
-      const std::string name = testName(scene, p, tex.desc.layers);
-      seen[name] = true;
-      const auto pixels = imagePixels(tex, p.level, p.layer);
-      const std::string hash = sha256Hex(pixels);
-      const std::string file = "images/" + name + imageExtension(tex.desc.format);
-      ++checked;
-      std::string why;
-      uint64_t ndiff = 0;
-      double maxd = 0.0;
-      if (!tests.contains(name)) {
-        why = "no golden entry";
-      } else {
-        const nlohmann::json& e = tests[name];
-        const std::string path = a.dir + "/" + e.value("file", "");
-        std::vector<uint8_t> golden;
-        try {
-          golden = readImage(path).pixels;
-        } catch (const Error& err) {
-          why = err.what();
-        }
-        if (why.empty()) {
-          std::tie(ndiff, maxd) = diffPixels(golden, pixels, tex.desc.format);
-          if (ndiff == ~0ull) why = "golden image has another size or format";
-          else if (ndiff) why = fmt::format("{} pixels differ from {} (max |delta| {})", ndiff, e["file"].get<std::string>(), maxd);
-          else if (e.value("image_sha256", "") != hash) why = "manifest hash differs from the image";
-        }
-      }
-      if (why.empty()) {
-        ++passed;
-        if (!update || a.onlyFailing) continue;
-      } else {
-        failed.push_back({{"test", name}, {"reason", why}});
-      }
-      if (!update) continue;
-      const std::string oldHash = tests.contains(name) ? tests[name].value("image_sha256", "") : "";
-      writeImage(tex, p.level, p.layer, a.dir + "/" + file);
-      tests[name] = {{"file", file},
-                     {"image_sha256", hash},
-                     {"format", std::string(formatName(tex.desc.format))},
-                     {"width", levelWidth(tex.desc, p.level)},
-                     {"height", levelHeight(tex.desc, p.level)},
-                     {"scene", scene},
-                     {"attachment", p.attachment},
-                     {"layer", p.layer},
-                     {"command", fmt::format("tessera render {} --size {}x{}", scene, s.width, s.height)}};
-      if (oldHash != hash)
-        changed.push_back({{"test", name}, {"old_sha256", oldHash}, {"new_sha256", hash},
-                           {"pixels_changed", ndiff == ~0ull ? -1 : int64_t(ndiff)}, {"max_abs_delta", maxd}});
+      checkImage(testName(scene, p, tex.desc.layers), tex, p.level, p.layer, scene, p.attachment,
+                 fmt::format("tessera render {} --size {}x{}", scene, s.width, s.height));
     }
   }
+  // Atlas tree frames of railway.glb in deterministic-budget mode (docs/mta-render.md).
+  for (const MtaGoldenFrame& f : mtaGoldenFrames(a.railway)) checkImage(f.name, *f.image, 0, 0, "mta_railway", 0, f.command);
   // Entries for images that no scene presents any more are stale.
   nlohmann::json stale = nlohmann::json::array();
   for (auto it = tests.begin(); it != tests.end(); ++it)
@@ -184,11 +193,13 @@ void addGoldenCommands(CLI::App& app) {
   auto a = std::make_shared<GoldenArgs>();
   auto* check = golden->add_subcommand("check", "Re-render every scene; demand bit-exact pixels (exit 1 on any difference)");
   check->add_option("--dir", a->dir, "Golden directory")->capture_default_str();
+  check->add_option("--railway", a->railway, "railway.glb, the real scene of the atlas tree goldens")->capture_default_str();
   check->callback([a] {
     if (int rc = runGolden(*a, false)) throw CLI::RuntimeError(rc);
   });
   auto* update = golden->add_subcommand("update", "Regenerate golden images and the manifest; print what changed");
   update->add_option("--dir", a->dir, "Golden directory")->capture_default_str();
+  update->add_option("--railway", a->railway, "railway.glb, the real scene of the atlas tree goldens")->capture_default_str();
   update->add_flag("--only-failing", a->onlyFailing, "Rewrite only the images that no longer match");
   update->callback([a] { runGolden(*a, true); });
 }

@@ -79,6 +79,7 @@ void addMtaCommands(CLI::App& app) {
     std::printf("%s\n", j.dump(2).c_str());
     printSummary(j);
   });
+  addMtaRenderCommands(app, mtaCmd);
 }
 
 }  // namespace tessera::cli

@@ -1,0 +1,421 @@
+#include "mta/camera_path.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <bit>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "raster/command_list.h"
+#include "tools/scenes/builder.h"
+
+namespace tessera::mta {
+
+namespace {
+
+using V3 = std::array<double, 3>;
+
+constexpr uint32_t kMaxFrames = 1000000;  // a sanity bound: 96 MB of cameras
+constexpr double kTwoPi = 2.0 * scenes::kPi;
+
+V3 lerp(const V3& a, const V3& b, double s) {
+  // (1 - s)·a + s·b rather than a + s·(b - a): s = 1 gives exactly b, so consecutive segments meet
+  // in the same bits at their shared keyframe.
+  return {(1.0 - s) * a[0] + s * b[0], (1.0 - s) * a[1] + s * b[1], (1.0 - s) * a[2] + s * b[2]};
+}
+double smoothstep(double t) { return t * t * (3.0 - 2.0 * t); }
+
+// The box a built-in path is laid out over, in the terms the paths are described in: the ground is at
+// min y, u is the long horizontal axis, v the short one, E the long horizontal extent.
+struct Layout {
+  double cx, cz, minY, maxY;
+  V3 u, v;      // unit horizontal axes (x / z)
+  double E, S;  // long and short horizontal extent (E > 0)
+  double near, far;
+  double ped;   // pedestrian eye height (absolute y)
+  double look;  // distance of a horizontal look-at target ahead of the eye
+
+  V3 at(double du, double y, double dv) const {
+    return {(cx + du * u[0]) + dv * v[0], y, (cz + du * u[2]) + dv * v[2]};
+  }
+  V3 ahead(const V3& eye, const V3& dir) const {
+    return {eye[0] + look * dir[0], eye[1] + look * dir[1], eye[2] + look * dir[2]};
+  }
+  Camera camera(const V3& eye, const V3& target) const {
+    Camera c;
+    c.eye = eye;
+    c.target = target;
+    c.nearPlane = near;
+    c.farPlane = far;
+    return c;
+  }
+};
+
+Layout layoutOf(std::string_view name, const std::array<float, 6>& b) {
+  for (int k = 0; k < 3; ++k)
+    if (!std::isfinite(b[k]) || !std::isfinite(b[k + 3]) || !(b[k] <= b[k + 3]))
+      throw Error("camera path '" + std::string(name) +
+                  "': the scene bounds must be finite with min <= max on every axis");
+  Layout l;
+  const double ex = double(b[3]) - b[0], ey = double(b[4]) - b[1], ez = double(b[5]) - b[2];
+  l.cx = 0.5 * (double(b[0]) + b[3]);
+  l.cz = 0.5 * (double(b[2]) + b[5]);
+  l.minY = b[1];
+  l.maxY = b[4];
+  const bool xLong = ex >= ez;
+  l.u = xLong ? V3{1, 0, 0} : V3{0, 0, 1};
+  l.v = xLong ? V3{0, 0, 1} : V3{1, 0, 0};
+  l.E = xLong ? ex : ez;
+  l.S = xLong ? ez : ex;
+  // A scene without horizontal extent (a tower, a point) still needs a path of some size.
+  if (!(l.E > 0.0)) l.E = ey > 0.0 ? ey : 1.0;
+  double D = std::sqrt((ex * ex + ey * ey) + ez * ez);
+  if (!(D > 0.0)) D = l.E;
+  l.near = 1e-4 * D;
+  l.far = 4.0 * D;  // beyond the farthest box corner from every eye position below (tested)
+  // Eye height: 1/2000 of the horizontal extent (2 m over a 4 km city), but well clear of the near plane
+  // so that the ground right below the eye is not clipped.
+  l.ped = l.minY + std::max(l.E / 2000.0, 2.0 * l.near);
+  l.look = 0.05 * l.E;
+  return l;
+}
+
+// ---- "thesis": keyframed, smoothstep between keyframes -------------------------------------------------
+
+// A segment moves eye and target from one keyframe to the next (Move), or keeps the eye and turns the
+// horizontal view direction from yaw0 to yaw1 (Turn; yaw 0 = +u, π/2 = +v). Times are frame numbers of
+// the 300-frame original; segment i ends where segment i + 1 starts.
+struct Segment {
+  double t0, t1;
+  bool turn;
+  V3 eye0, target0, eye1, target1;  // Move
+  double yaw0, yaw1;                // Turn (eye0 is the eye)
+};
+
+// The smallest distance R at which a camera at mid + R·back (back a unit vector), looking at mid, sees all
+// eight corners of the box: a corner p (relative to mid) at depth R + p·f is in view iff |p·s| <= tx·depth
+// and |p·t| <= ty·depth (s, t the view's right and up axes), i.e. R >= |p·s| / tx - p·f and likewise for t.
+// 5% margin.
+double overviewDistance(const Layout& l, const V3& back) {
+  const double tx = Camera{}.tanHalfFovX, ty = tx * 0.75;
+  const V3 f = {-back[0], -back[1], -back[2]};
+  auto cross = [](const V3& a, const V3& b) {
+    return V3{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+  };
+  auto dot = [](const V3& a, const V3& b) { return (a[0] * b[0] + a[1] * b[1]) + a[2] * b[2]; };
+  V3 s = cross(f, V3{0, 1, 0});
+  const double sl = std::sqrt(dot(s, s));
+  s = {s[0] / sl, s[1] / sl, s[2] / sl};
+  const V3 t = cross(s, f);
+  double R = 0.0;
+  for (int k = 0; k < 8; ++k) {
+    const double du = (k & 1 ? 0.5 : -0.5) * l.E, dv = (k & 2 ? 0.5 : -0.5) * l.S;
+    const double dy = (k & 4 ? 0.5 : -0.5) * (l.maxY - l.minY);
+    const V3 p = {du * l.u[0] + dv * l.v[0], dy, du * l.u[2] + dv * l.v[2]};
+    const double pf = dot(p, f);
+    R = std::max(R, std::max(std::abs(dot(p, s)) / tx - pf, std::abs(dot(p, t)) / ty - pf));
+  }
+  return 1.05 * std::max(R, 0.1 * l.E);  // never closer than 0.1 E, e.g. for a box without extent
+}
+
+constexpr double kThesisLength = 299.0;  // frames 0..299
+
+std::vector<Segment> thesisSegments(const Layout& l) {
+  // A "low flythrough" just over typical roofs: a quarter of the box height, but at least 1% of the
+  // extent for flat scenes.
+  const double roof = l.minY + std::max(0.25 * (l.maxY - l.minY), 0.01 * l.E);
+  // The full overviews look at the box centre from 45° above the horizon (along +u, then along +v), from
+  // the nearest distance at which every box corner is in view for the default 60° horizontal fov at the
+  // CLI's default 4:3 frame (overviewDistance); for a flat city that is ~0.9 E above the ground.
+  const V3 mid = {l.cx, 0.5 * (l.minY + l.maxY), l.cz};
+  const double c45 = std::sqrt(0.5);
+  const V3 back1 = {-c45 * l.u[0], c45, -c45 * l.u[2]}, back2 = {-c45 * l.v[0], c45, -c45 * l.v[2]};
+  const double R1 = overviewDistance(l, back1), R2 = overviewDistance(l, back2);
+  const V3 over1 = {mid[0] + R1 * back1[0], mid[1] + R1 * back1[1], mid[2] + R1 * back1[2]};  // looks along +u
+  const V3 over2 = {mid[0] + R2 * back2[0], mid[1] + R2 * back2[1], mid[2] + R2 * back2[2]};  // looks along +v
+  const V3 walkA = l.at(-0.35 * l.E, l.ped, 0), walkB = l.at(-0.05 * l.E, l.ped, 0);
+  const V3 roof1 = l.at(-0.1 * l.E, roof, 0.1 * l.S), roof2 = l.at(0.25 * l.E, roof, 0.1 * l.S);
+  const V3 spot = l.at(0.3 * l.E, l.ped, 0);
+  // Every pair of consecutive view directions has horizontal parts with a positive dot product, so the
+  // interpolated direction never becomes vertical (parallel to up) and eye and target never meet.
+  const double turnEnd = kTwoPi + 0.5 * scenes::kPi;  // 450°: ends looking along +v, towards over2's view
+  const V3 endTurn = l.ahead(spot, l.v);
+  return {
+      {0, 60, false, walkA, l.ahead(walkA, l.u), walkB, l.ahead(walkB, l.u), 0, 0},     // pedestrian walk
+      {60, 120, false, walkB, l.ahead(walkB, l.u), over1, mid, 0, 0},                   // rapid rise to the overview
+      {120, 150, false, over1, mid, roof1, l.ahead(roof1, l.u), 0, 0},                  // dive to the roofs
+      {150, 180, false, roof1, l.ahead(roof1, l.u), roof2, l.ahead(roof2, l.u), 0, 0},  // low flythrough
+      {180, 195, false, roof2, l.ahead(roof2, l.u), spot, l.ahead(spot, l.u), 0, 0},    // drop to the street
+      {195, 240, true, spot, {}, spot, {}, 0, turnEnd},                                 // fast turn on the spot
+      {240, kThesisLength, false, spot, endTurn, over2, mid, 0, 0},                     // climb to the full overview
+  };
+}
+
+Camera thesisFrame(const Layout& l, const std::vector<Segment>& segs, double t) {
+  size_t i = 0;
+  while (i + 1 < segs.size() && t >= segs[i].t1) ++i;
+  const Segment& s = segs[i];
+  const double local = std::min(1.0, std::max(0.0, (t - s.t0) / (s.t1 - s.t0)));
+  const double w = smoothstep(local);
+  if (!s.turn) return l.camera(lerp(s.eye0, s.eye1, w), lerp(s.target0, s.target1, w));
+  const double yaw = (1.0 - w) * s.yaw0 + w * s.yaw1;
+  const double c = scenes::detCos(yaw), sn = scenes::detSin(yaw);
+  const V3 dir = {c * l.u[0] + sn * l.v[0], 0.0, c * l.u[2] + sn * l.v[2]};
+  return l.camera(s.eye0, l.ahead(s.eye0, dir));
+}
+
+CameraPath thesisPath(const Layout& l, uint32_t n) {
+  const std::vector<Segment> segs = thesisSegments(l);
+  CameraPath p{"thesis", {}};
+  p.frames.reserve(n);
+  for (uint32_t i = 0; i < n; ++i) {
+    // n = 300 gives t = i exactly (i · 299 / 299); other counts resample the same keyframes.
+    const double t = n == 1 ? 0.0 : double(i) * kThesisLength / double(n - 1);
+    p.frames.push_back(thesisFrame(l, segs, t));
+  }
+  return p;
+}
+
+CameraPath orbitPath(const Layout& l, uint32_t n) {
+  CameraPath p{"orbit", {}};
+  const double r = 0.6 * l.E, y = l.minY + 0.35 * l.E;
+  const V3 centre = {l.cx, 0.5 * (l.minY + l.maxY), l.cz};
+  for (uint32_t i = 0; i < n; ++i) {
+    const double a = kTwoPi * double(i) / double(n);  // a closed loop: frame n would repeat frame 0
+    p.frames.push_back(l.camera({l.cx + r * scenes::detCos(a), y, l.cz + r * scenes::detSin(a)}, centre));
+  }
+  return p;
+}
+
+CameraPath streetPath(const Layout& l, uint32_t n) {
+  CameraPath p{"street", {}};
+  for (uint32_t i = 0; i < n; ++i) {
+    const double t = n == 1 ? 0.0 : double(i) / double(n - 1);
+    const V3 eye = l.at((t - 0.5) * 0.9 * l.E, l.ped, 0);  // constant walking speed from -0.45 E to 0.45 E
+    p.frames.push_back(l.camera(eye, l.ahead(eye, l.u)));
+  }
+  return p;
+}
+
+// ---- the path file -------------------------------------------------------------------------------------
+
+std::string fmt(double v) {
+  char buf[64];
+  // Shortest decimal that parses back to the same double: exact round trip, and locale-independent
+  // (unlike printf, whose decimal point follows LC_NUMERIC).
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
+bool sameBits(double a, double b) { return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b); }
+
+std::string stemOf(const std::string& path) { return std::filesystem::path(path).stem().string(); }
+
+bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && isSpace(s.front())) s.remove_prefix(1);
+  while (!s.empty() && isSpace(s.back())) s.remove_suffix(1);
+  return s;
+}
+
+std::vector<std::string_view> split(std::string_view s) {
+  std::vector<std::string_view> t;
+  size_t i = 0;
+  while (i < s.size()) {
+    while (i < s.size() && isSpace(s[i])) ++i;
+    const size_t b = i;
+    while (i < s.size() && !isSpace(s[i])) ++i;
+    if (i > b) t.push_back(s.substr(b, i - b));
+  }
+  return t;
+}
+
+}  // namespace
+
+std::vector<std::string> builtinPathNames() { return {"thesis", "orbit", "street"}; }
+
+CameraPath builtinPath(std::string_view name, const std::array<float, 6>& sceneBounds, uint32_t frames) {
+  const auto names = builtinPathNames();
+  if (std::find(names.begin(), names.end(), name) == names.end()) {
+    std::string known;
+    for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+    throw Error("camera path '" + std::string(name) + "': not a built-in path (known: " + known + ")");
+  }
+  if (frames > kMaxFrames)
+    throw Error("camera path '" + std::string(name) + "': " + std::to_string(frames) + " frames requested, at most " +
+                std::to_string(kMaxFrames));
+  const Layout l = layoutOf(name, sceneBounds);
+  if (name == "thesis") return thesisPath(l, frames ? frames : 300);
+  if (name == "orbit") return orbitPath(l, frames ? frames : 120);
+  return streetPath(l, frames ? frames : 120);
+}
+
+CameraPath readPathFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open: " + std::strerror(errno));
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string text = ss.str();
+  if (in.bad()) throw Error(path + ": read failed");
+  if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);  // a UTF-8 byte order mark is not content
+
+  CameraPath p;
+  bool header = false, named = false;
+  size_t lineNo = 0, pendingDirective = 0;  // line of a directive that no frame has used yet
+  Camera state;                             // the directives' current values, applied to each frame
+  std::string where;
+  auto fail = [&](const std::string& why) { throw Error(where + ": " + why); };
+  auto number = [&](std::string_view field) {
+    // from_chars takes no leading '+', people write one.
+    const std::string_view tok =
+        field.size() > 1 && field[0] == '+' && field[1] != '-' && field[1] != '+' ? field.substr(1) : field;
+    double v = 0.0;
+    const auto r = std::from_chars(tok.data(), tok.data() + tok.size(), v);
+    if (r.ec == std::errc::result_out_of_range) fail("'" + std::string(tok) + "' is out of the range of a double");
+    if (r.ec != std::errc() || r.ptr != tok.data() + tok.size()) fail("'" + std::string(tok) + "' is not a number");
+    if (!std::isfinite(v)) fail("'" + std::string(tok) + "' is not finite");
+    return v;
+  };
+  auto expectArgs = [&](const std::vector<std::string_view>& t, size_t n) {
+    if (t.size() == n + 1) return;
+    std::string why = "'";  // appended piecewise: GCC 12 warns falsely (-Wrestrict) on the chained operator+
+    why.append(t[0]).append("' takes ").append(std::to_string(n)).append(n == 1 ? " number" : " numbers");
+    why.append(", got ").append(std::to_string(t.size() - 1));
+    fail(why);
+  };
+
+  size_t pos = 0;
+  while (pos < text.size()) {
+    size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    std::string_view line(text.data() + pos, end - pos);
+    pos = end + 1;
+    ++lineNo;
+    where = path + ":" + std::to_string(lineNo);
+    if (const size_t hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+    const std::vector<std::string_view> t = split(line);
+    if (t.empty()) continue;
+
+    if (!header) {
+      if (t[0] == "tessera-camera-path" && t.size() == 2 && t[1] != "1")
+        fail("unsupported format version '" + std::string(t[1]) + "' (this reader knows version 1)");
+      if (t.size() != 2 || t[0] != "tessera-camera-path" || t[1] != "1")
+        fail("expected the header 'tessera-camera-path 1' as the first non-comment line");
+      header = true;
+      continue;
+    }
+
+    const std::string_view k = t[0];
+    const bool directive = k == "name" || k == "fov" || k == "tan_half_fov" || k == "near" || k == "far" || k == "up";
+    // Six fields or a leading number make a frame, so that "nan 0 0 1 0 0" says "not finite" rather than
+    // "unknown directive".
+    const bool frameLine =
+        !directive && (t.size() == 6 || k[0] == '-' || k[0] == '+' || k[0] == '.' || (k[0] >= '0' && k[0] <= '9'));
+    if (frameLine) {
+      if (t.size() != 6) fail("a frame needs 6 numbers (eye x y z, target x y z), got " + std::to_string(t.size()));
+      Camera c = state;
+      for (int i = 0; i < 3; ++i) c.eye[i] = number(t[i]), c.target[i] = number(t[3 + i]);
+      validate(c, where);
+      if (p.frames.size() >= kMaxFrames) fail("more than " + std::to_string(kMaxFrames) + " frames");
+      p.frames.push_back(c);
+      pendingDirective = 0;
+      continue;
+    }
+    pendingDirective = lineNo;
+    if (k == "name") {
+      if (named) fail("'name' is given twice");
+      const std::string_view rest = trim(line.substr(size_t(k.data() + k.size() - line.data())));
+      if (rest.empty()) fail("'name' needs a value");
+      p.name = std::string(rest);
+      named = true;
+      pendingDirective = 0;  // applies to the whole path, not to the frames that follow
+    } else if (k == "fov") {
+      expectArgs(t, 1);
+      const double deg = number(t[1]);
+      if (!(deg > 0.0 && deg < 180.0)) fail("fov " + std::string(t[1]) + ": must be in (0, 180) degrees");
+      // The same formula as BuildParams::effectiveTanHalfFov, so equal degrees give equal bits.
+      const double half = deg * scenes::kPi / 360.0;
+      state.tanHalfFovX = scenes::detSin(half) / scenes::detCos(half);
+    } else if (k == "tan_half_fov") {
+      expectArgs(t, 1);
+      state.tanHalfFovX = number(t[1]);
+      if (!(state.tanHalfFovX > 0.0)) fail("tan_half_fov " + std::string(t[1]) + ": must be > 0");
+    } else if (k == "near") {
+      expectArgs(t, 1);
+      state.nearPlane = number(t[1]);
+      if (!(state.nearPlane > 0.0)) fail("near " + std::string(t[1]) + ": must be > 0");
+    } else if (k == "far") {
+      expectArgs(t, 1);
+      state.farPlane = number(t[1]);
+      if (!(state.farPlane > 0.0)) fail("far " + std::string(t[1]) + ": must be > 0");
+    } else if (k == "up") {
+      expectArgs(t, 3);
+      for (int i = 0; i < 3; ++i) state.up[i] = number(t[1 + i]);
+      if (state.up[0] == 0.0 && state.up[1] == 0.0 && state.up[2] == 0.0) fail("up: must not be the zero vector");
+    } else {
+      fail("unknown directive '" + std::string(k) + "' (known: name, fov, tan_half_fov, near, far, up)");
+    }
+  }
+  if (!header)
+    throw Error(path + ":" + std::to_string(std::max<size_t>(lineNo, 1)) +
+                ": expected the header 'tessera-camera-path 1'; the file has no content");
+  if (pendingDirective)
+    throw Error(path + ":" + std::to_string(pendingDirective) + ": directive has no effect: no frame follows it");
+  if (p.frames.empty()) throw Error(path + ":" + std::to_string(lineNo) + ": the file has no frames");
+  if (!named) p.name = stemOf(path);
+  return p;
+}
+
+void writePathFile(const CameraPath& p, const std::string& path) {
+  for (unsigned char ch : p.name)
+    if (ch < 0x20 || ch == 0x7f || ch == '#')
+      throw Error(path + ": path name '" + p.name +
+                  "' contains a control character or '#', which the file cannot hold");
+  if (trim(p.name).size() != p.name.size())
+    throw Error(path + ": path name '" + p.name + "' has surrounding spaces, which the file cannot hold");
+  if (p.frames.empty()) throw Error(path + ": the camera path has no frames");
+  for (size_t i = 0; i < p.frames.size(); ++i) validate(p.frames[i], path + ": frame " + std::to_string(i));
+
+  std::string out = "tessera-camera-path 1\n# docs/mta-camera-path.md; one frame per line: eye x y z, target x y z\n";
+  if (!p.name.empty()) out += "name " + p.name + "\n";
+  Camera state;  // the reader's defaults
+  for (const Camera& c : p.frames) {
+    if (!sameBits(c.tanHalfFovX, state.tanHalfFovX)) out += "tan_half_fov " + fmt(c.tanHalfFovX) + "\n";
+    if (!sameBits(c.nearPlane, state.nearPlane)) out += "near " + fmt(c.nearPlane) + "\n";
+    if (!sameBits(c.farPlane, state.farPlane)) out += "far " + fmt(c.farPlane) + "\n";
+    if (!sameBits(c.up[0], state.up[0]) || !sameBits(c.up[1], state.up[1]) || !sameBits(c.up[2], state.up[2]))
+      out += "up " + fmt(c.up[0]) + " " + fmt(c.up[1]) + " " + fmt(c.up[2]) + "\n";
+    state = c;
+    out += fmt(c.eye[0]) + " " + fmt(c.eye[1]) + " " + fmt(c.eye[2]) + "  " + fmt(c.target[0]) + " " +
+           fmt(c.target[1]) + " " + fmt(c.target[2]) + "\n";
+  }
+
+  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (!f) throw Error(path + ": cannot create '" + tmp + "': " + std::strerror(errno));
+  const bool ok =
+      std::fwrite(out.data(), 1, out.size(), f) == out.size() && std::fflush(f) == 0 && ::fsync(::fileno(f)) == 0;
+  const int err = errno;
+  if (std::fclose(f) != 0 || !ok) {
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    throw Error(path + ": write failed: " + std::strerror(ok ? errno : err));
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::error_code ec2;
+    std::filesystem::remove(tmp, ec2);
+    throw Error(path + ": cannot rename '" + tmp + "': " + ec.message());
+  }
+}
+
+}  // namespace tessera::mta

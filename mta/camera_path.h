@@ -1,0 +1,47 @@
+// Camera paths for the atlas tree renderer: the built-in paths laid out over a scene's bounding box, and
+// the camera path file (docs/mta-camera-path.md).
+//
+// Implements: "thesis" (an imitation of the 300-frame Berlin animation of Buchholz's thesis §4.7.1:
+// rapid changes between pedestrian views and a full overview), "orbit" and "street"; reading and writing
+// path files. Everything is computed with + - * / sqrt and scenes::detSin/detCos only, so a path has the
+// same bits on every machine.
+// Does not implement: the camera itself (camera.h), rendering along a path (tree_renderer.h).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "mta/camera.h"
+
+namespace tessera::mta {
+
+struct CameraPath {
+  std::string name;
+  std::vector<Camera> frames;
+};
+
+// Names of the built-in paths, for --help: "thesis" (300 frames), "orbit" (120), "street" (120).
+std::vector<std::string> builtinPathNames();
+
+// A built-in path laid out over a scene's bounding box {min x, y, z, max x, y, z} (+y is up, the ground is
+// taken to be at min y). Every frame has up = (0, 1, 0), the default tanHalfFovX (60 degrees), near =
+// 1e-4 · D and far = 4 · D with D the box diagonal (callers may override these afterwards).
+// frames = 0 gives the path's default count; any other count resamples the same path (frame i of n sits
+// at path time i / (n - 1)).
+// Throws Error for an unknown name (listing the known ones) or for non-finite or inverted bounds.
+CameraPath builtinPath(std::string_view name, const std::array<float, 6>& sceneBounds, uint32_t frames = 0);
+
+// Reads a camera path file. The path's name is the file's `name` directive, else the file name without
+// its extension. Throws Error("<file>:<line>: <reason>") for any malformed line or invalid camera.
+CameraPath readPathFile(const std::string& path);
+
+// Writes `p` so that readPathFile gives back exactly the same bits (shortest round-trip decimal numbers;
+// tan_half_fov / near / far / up directives are written whenever they change). Written to
+// path.tmp-<pid>, then renamed. Throws Error naming the file if a frame is invalid, the name cannot be
+// represented (control characters, '#', surrounding spaces) or the file cannot be written.
+void writePathFile(const CameraPath& p, const std::string& path);
+
+}  // namespace tessera::mta

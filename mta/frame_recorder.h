@@ -1,0 +1,82 @@
+// Recording an atlas tree frame as a CommandList, so that every texture bind, state change and draw is
+// counted exactly (raster/counters.h) and the oracle renders it.
+//
+// Implements: the frame's resources (one RGBA8 colour target and a D32F depth target, the runtime
+// vertex array, one texture with a full mip chain per texture bound this frame, the samplers) and its
+// commands in plan order: an atlas draw binds the node's atlas, sets the texture matrix diag(2^level)
+// (§4.5.4, REPEAT addressing) and draws root-atlas texcoords; an original draw binds the scene texture
+// with its wrap modes and the identity matrix and draws the original texcoords; untextured triangles and
+// the dummy run use a 1x1 white texture. Filtering is trilinear everywhere (LINEAR_MIPMAP_LINEAR), mip
+// chains come from the documented box filter (raster/texture.h). Alpha is not tested or blended: the
+// thesis's comparison runs did the same (§4.7.2) so that texture content cannot change the frame cost.
+// The id variant draws the same triangles with "object_id" into two R32UI targets: attachment 0 holds
+// the global triangle index (runtime_geometry.h), 0xffffffff where nothing was drawn.
+// Also implements the texture cache: RGBA8 mip chains made from resident blocks (dropped when a block
+// is removed or reloaded) or, for the comparison runs, read straight from the paging file.
+// Does not implement: choosing draws (traversal.h), executing (raster/cpu_backend.h).
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "mta/paging_file.h"
+#include "mta/residency.h"
+#include "mta/runtime_geometry.h"
+#include "mta/traversal.h"
+#include "raster/command_list.h"
+
+namespace tessera::mta {
+
+struct MipChain {
+  uint32_t width = 0, height = 0;
+  std::vector<std::vector<uint8_t>> levels;  // RGBA8, rows bottom first as uploaded
+  uint64_t bytes() const;
+};
+
+class TextureCache {
+ public:
+  // residency == nullptr: blocks are read from the file on demand (comparison runs), and the cache keeps
+  // at most `fileCacheBytes` of chains.
+  TextureCache(const PagingFile& file, const Residency* residency, uint64_t fileCacheBytes = uint64_t(2) << 30);
+  // Drops chains whose blocks were removed or reloaded since they were made.
+  void prune();
+  const MipChain& atlas(uint8_t tree, uint32_t node);
+  const MipChain& image(uint32_t image);
+  uint64_t bytes() const { return bytes_; }
+
+ private:
+  struct Entry {
+    std::shared_ptr<MipChain> chain;
+    std::vector<std::pair<uint32_t, uint64_t>> blocks;  // (block, generation) it was made from
+  };
+  std::vector<uint8_t> blockBytes(uint32_t block);
+  const MipChain& store(uint64_t key, std::shared_ptr<MipChain> chain, std::vector<std::pair<uint32_t, uint64_t>> blocks);
+  const PagingFile& file_;
+  const Residency* residency_;
+  uint64_t fileCacheBytes_, bytes_ = 0;
+  std::map<uint64_t, Entry> entries_;
+};
+
+struct RecordParams {
+  uint32_t width = 1024, height = 768;
+  std::array<float, 4> clear{0.62f, 0.74f, 0.88f, 1.0f};  // sky
+  bool idFrame = false;
+};
+
+// Every texture the frame bound, for the texel analysis: what unit 0 held at each planned draw.
+struct BoundTexture {
+  uint32_t width = 0, height = 0, levels = 0;
+  double scale = 1.0;  // texture matrix scale (2^level for atlases)
+};
+
+struct RecordedFrame {
+  CommandList list;
+  std::vector<BoundTexture> drawTexture;  // per PlannedDraw
+};
+
+RecordedFrame recordFrame(const MtaMeta& meta, const RuntimeGeometry& geometry, const FramePlan& plan, const ViewParams& view,
+                          TextureCache& textures, const RecordParams& params);
+
+}  // namespace tessera::mta

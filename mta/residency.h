@@ -1,0 +1,129 @@
+// The memory manager of the atlas tree (thesis §4.6): which paging-file blocks are in memory.
+//
+// Implements, as §4.6 describes:
+// - blocks (node atlases and original-texture blocks) with a capacity k in bytes that the summed size of
+//   the blocks in memory (plus blocks being loaded) never exceeds; the root atlases are loaded at
+//   construction and never removed;
+// - per frame, from the block priorities of the usage traversal (traversal.h: usage category Needed /
+//   Culled / Parent needed / Unused, then distance, then tree level): the ideal block set, i.e. the
+//   blocks of the first three categories in priority order, cut to the longest prefix whose size fits
+//   the capacity;
+// - a request queue (at most maxQueue blocks, in priority order) refilled from the ideal set with the
+//   most important blocks neither in memory nor queued, and dropped entries that left the ideal set;
+// - loading within a per-frame budget, removing the block of lowest priority when a load would exceed
+//   the capacity (never a block of the ideal set: the ideal set fits by construction).
+// Budgets: Bytes / Blocks are deterministic (the same path gives the same residency on every run and
+// machine; tests and goldens use them); Time reserves a wall-clock slot per frame for blocks read by a
+// background loader thread (interactive use; not reproducible).
+// Block sizes are paging-file payload bytes: what the thesis's k bounds. The textures made from them
+// (RGBA8 with mipmaps, frame_recorder.h) are a derived cache dropped with their blocks.
+// Does not implement: the usage traversal and rendering (traversal.h).
+#pragma once
+
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <limits>
+#include <mutex>
+#include <span>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "mta/paging_file.h"
+
+namespace tessera::mta {
+
+enum class Usage : uint8_t { Needed = 0, Culled = 1, ParentNeeded = 2, Unused = 3 };
+const char* usageName(Usage u);
+
+// Smaller is more important: usage, then distance, then level, then block index (a total order, so
+// every tie is broken the same way on every machine).
+struct BlockPriority {
+  Usage usage = Usage::Unused;
+  double distance = std::numeric_limits<double>::infinity();
+  uint32_t level = std::numeric_limits<uint32_t>::max();
+};
+bool morePressing(const BlockPriority& a, uint32_t blockA, const BlockPriority& b, uint32_t blockB);
+
+struct LoadBudget {
+  enum class Kind : uint8_t { Bytes, Blocks, Time } kind = Kind::Bytes;
+  uint64_t perFrame = uint64_t(8) << 20;  // Bytes: payload bytes per frame; Blocks: blocks per frame
+  double slotMs = 4.0;                    // Time: wall-clock milliseconds per frame
+  // Parses "8MiB", "3000000", "4blocks", "5ms" (the --budget syntax); throws Error naming `what`.
+  static LoadBudget parse(const std::string& text, const std::string& what);
+  std::string describe() const;
+};
+
+struct ResidencyOptions {
+  uint64_t capacityBytes = uint64_t(100) << 20;  // k; the thesis used 100 MB
+  LoadBudget budget;
+  uint32_t maxQueue = 32;
+};
+
+// What happened in one update().
+struct ResidencyFrameStats {
+  uint64_t blocksLoaded = 0, bytesLoaded = 0, blocksEvicted = 0;
+  uint64_t idealBlocks = 0, idealBytes = 0;          // after the cut to capacity
+  uint64_t idealBlocksCut = 0;                        // blocks of the first three categories left out
+  uint64_t neededMissing = 0;                         // Needed blocks not in memory after loading
+  uint64_t queueLength = 0;
+  std::vector<uint32_t> loadOrder;                    // blocks completed this frame, in order
+};
+
+class Residency {
+ public:
+  // Loads every root atlas. Throws Error if the capacity cannot hold them.
+  Residency(const PagingFile& file, ResidencyOptions options);
+  ~Residency();
+  Residency(const Residency&) = delete;
+  Residency& operator=(const Residency&) = delete;
+
+  // priority: one entry per paging-file block (from the usage traversal).
+  const ResidencyFrameStats& update(const std::vector<BlockPriority>& priority);
+
+  bool resident(uint32_t block) const { return state_[block].resident; }
+  // The payload of a resident block (empty span otherwise).
+  std::span<const uint8_t> data(uint32_t block) const;
+  // Bumped each time the block is loaded: caches of derived textures key on (block, generation).
+  uint64_t generation(uint32_t block) const { return state_[block].generation; }
+  bool pinned(uint32_t block) const { return state_[block].pinned; }
+
+  uint64_t bytesResident() const { return bytesResident_; }  // includes blocks being loaded
+  uint64_t blocksResident() const { return blocksResident_; }
+  uint64_t capacity() const { return options_.capacityBytes; }
+  uint64_t peakBytesResident() const { return peak_; }
+  const ResidencyOptions& options() const { return options_; }
+
+ private:
+  struct BlockState {
+    bool resident = false, pinned = false, queued = false, inFlight = false, ideal = false;
+    uint64_t progress = 0;  // Bytes budget: payload bytes read so far
+    uint64_t generation = 0;
+    std::vector<uint8_t> bytes;
+  };
+  bool makeRoom(uint64_t bytes, const std::vector<BlockPriority>& priority);
+  void install(uint32_t block, std::vector<uint8_t> bytes);
+  void checkCapacity() const;
+  void serveDeterministic(const std::vector<BlockPriority>& priority);
+  void serveTimed(const std::vector<BlockPriority>& priority);
+  void loaderMain();
+
+  const PagingFile& file_;
+  ResidencyOptions options_;
+  std::vector<BlockState> state_;
+  std::vector<uint32_t> queue_;
+  uint64_t bytesResident_ = 0, blocksResident_ = 0, peak_ = 0;
+  ResidencyFrameStats stats_;
+
+  // Time budget: the loader thread reads the blocks it is handed (space already reserved).
+  std::thread loader_;
+  std::mutex mu_;
+  std::condition_variable cv_;
+  std::deque<uint32_t> toLoad_;
+  std::vector<std::pair<uint32_t, std::vector<uint8_t>>> loaded_;
+  std::string loaderError_;
+  bool stop_ = false;
+};
+
+}  // namespace tessera::mta

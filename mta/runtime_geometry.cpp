@@ -1,0 +1,66 @@
+#include "mta/runtime_geometry.h"
+
+#include <algorithm>
+#include <numeric>
+
+namespace tessera::mta {
+
+RuntimeGeometry buildRuntimeGeometry(const MtaMeta& meta) {
+  RuntimeGeometry g;
+  size_t total = 0;
+  for (const Tree& t : meta.trees) total += t.geometry.triangleCount();
+  g.vertices.resize(total * 3);
+  g.triangleTree.resize(total);
+  g.triangleLeaf.resize(total);
+  g.triangleSource.resize(total);
+  uint32_t base = 0;
+  std::vector<uint32_t> order;
+  for (size_t ti = 0; ti < meta.trees.size(); ++ti) {
+    const Tree& t = meta.trees[ti];
+    const SceneLayer& layer0 = t.geometry.layers[0];
+    RuntimeTree rt;
+    rt.firstTriangle = base;
+    rt.leaf.resize(t.nodes.size());
+    for (size_t n = 0; n < t.nodes.size(); ++n) {
+      const Node& node = t.nodes[n];
+      if (!node.leaf()) continue;
+      // Stable sort by texture, untextured (-1) last: keeps the file's order inside each run.
+      order.resize(node.triangleCount);
+      std::iota(order.begin(), order.end(), node.firstTriangle);
+      std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+        const uint32_t ka = uint32_t(layer0.texture[a]), kb = uint32_t(layer0.texture[b]);  // -1 -> max
+        return ka < kb;
+      });
+      LeafRuns& lr = rt.leaf[n];
+      lr.runFirst = uint32_t(g.runs.size());
+      lr.texturedFirst = base + node.firstTriangle;
+      for (uint32_t k = 0; k < node.triangleCount; ++k) {
+        const uint32_t src = order[k];
+        const uint32_t dst = base + node.firstTriangle + k;
+        const int32_t tex = layer0.texture[src];
+        if (g.runs.size() == lr.runFirst || g.runs.back().texture != tex)
+          g.runs.push_back(TextureRun{tex, dst, 0});
+        ++g.runs.back().count;
+        if (tex >= 0) ++lr.texturedCount; else ++lr.untexturedCount;
+        for (int v = 0; v < 3; ++v) {
+          RuntimeVertex& rv = g.vertices[size_t(dst) * 3 + v];
+          const Float3& p = t.geometry.positions[size_t(src) * 3 + v];
+          rv.pos[0] = p.x, rv.pos[1] = p.y, rv.pos[2] = p.z;
+          rv.atlasUV[0] = t.atlasUV[size_t(src) * 3 + v].u, rv.atlasUV[1] = t.atlasUV[size_t(src) * 3 + v].v;
+          rv.origUV[0] = layer0.uv[size_t(src) * 3 + v].u, rv.origUV[1] = layer0.uv[size_t(src) * 3 + v].v;
+          rv.triangle = dst;
+          rv.pad = 0;
+        }
+        g.triangleTree[dst] = uint8_t(ti);
+        g.triangleLeaf[dst] = uint32_t(n);
+        g.triangleSource[dst] = src;
+      }
+      lr.runCount = uint32_t(g.runs.size()) - lr.runFirst;
+    }
+    base += uint32_t(t.geometry.triangleCount());
+    g.trees.push_back(std::move(rt));
+  }
+  return g;
+}
+
+}  // namespace tessera::mta

@@ -1,0 +1,59 @@
+// The atlas tree's geometry as the renderer draws it: one interleaved vertex array for every tree of a
+// paging file, and per leaf the runs of triangles that share an original texture.
+//
+// Implements: a permutation inside each leaf (triangles sorted by original texture, untextured ones
+// last) so that a leaf drawn with its original textures needs one draw per texture and a node drawn
+// with its atlas needs one draw per run of adjacent leaves (thesis §4.8.1: node ranges stay
+// contiguous because the permutation never leaves a leaf); the vertex records.
+// Does not implement: deciding what to draw (traversal.h), recording (frame_recorder.h).
+//
+// Only layer 0 is drawn (the base colour); further layers (§5.1.3) share the parameterization and
+// would be bound to further texture units by a program that reads them.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "mta/paging_file.h"
+
+namespace tessera::mta {
+
+// 36 bytes; the vertex layouts of frame_recorder.cpp depend on these offsets.
+struct RuntimeVertex {
+  float pos[3];
+  float atlasUV[2];  // root-atlas coordinates (scaled by 2^level in the program's texture matrix)
+  float origUV[2];   // original texture coordinates, unwrapped
+  uint32_t triangle; // global triangle index (object_id frames; texel analysis)
+  uint32_t pad;
+};
+
+// A run of triangles [first, first + count) in global triangle order using one original texture.
+struct TextureRun {
+  int32_t texture = -1;  // scene texture; -1 = untextured
+  uint32_t first = 0, count = 0;
+};
+
+struct LeafRuns {
+  uint32_t texturedFirst = 0, texturedCount = 0;  // the leaf's textured triangles (all runs but the last -1 run)
+  uint32_t runFirst = 0, runCount = 0;            // into RuntimeGeometry::runs
+  uint32_t untexturedCount = 0;                   // follow the textured triangles
+};
+
+struct RuntimeTree {
+  uint32_t firstTriangle = 0;  // of this tree in the global order (trees follow each other)
+  std::vector<LeafRuns> leaf;  // per node (inner nodes: empty record)
+};
+
+struct RuntimeGeometry {
+  std::vector<RuntimeVertex> vertices;  // 3 per triangle, global order
+  std::vector<TextureRun> runs;
+  std::vector<RuntimeTree> trees;
+  // Per global triangle: tree and node (leaf) it belongs to, and its tree-local index in the file.
+  std::vector<uint8_t> triangleTree;
+  std::vector<uint32_t> triangleLeaf, triangleSource;
+  uint32_t triangleCount() const { return uint32_t(triangleLeaf.size()); }
+};
+
+RuntimeGeometry buildRuntimeGeometry(const MtaMeta& meta);
+
+}  // namespace tessera::mta

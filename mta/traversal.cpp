@@ -1,0 +1,258 @@
+#include "mta/traversal.h"
+
+#include <algorithm>
+
+#include "raster/command_list.h"
+
+namespace tessera::mta {
+
+const char* renderModeName(RenderMode m) {
+  switch (m) {
+    case RenderMode::AtlasTree: return "atlas_tree";
+    case RenderMode::Original: return "original";
+    case RenderMode::Dummy: return "dummy";
+  }
+  return "?";
+}
+
+BlockIndex buildBlockIndex(const MtaMeta& meta) {
+  BlockIndex bi;
+  bi.layerCount = meta.layerCount;
+  for (const Tree& t : meta.trees) {
+    BlockIndex::PerTree pt;
+    const size_t n = t.nodes.size();
+    pt.atlasFirst.resize(n);
+    pt.originalFirst.assign(n, 0);
+    pt.originalCount.assign(n, 0);
+    std::vector<uint32_t> blocks;
+    for (size_t i = 0; i < n; ++i) {
+      pt.atlasFirst[i] = uint32_t(pt.atlas.size());
+      for (uint32_t l = 0; l < meta.layerCount; ++l) pt.atlas.push_back(t.atlasBlocks[i * meta.layerCount + l]);
+      const Node& node = t.nodes[i];
+      if (!node.leaf()) continue;
+      blocks.clear();
+      for (uint32_t k = 0; k < node.imageCount; ++k) {
+        const ImageRecord& img = meta.images[t.leafImages[node.imageFirst + k]];
+        for (uint32_t p = 0; p < img.pieceCount; ++p) blocks.push_back(meta.pieces[img.firstPiece + p].block);
+      }
+      std::sort(blocks.begin(), blocks.end());
+      blocks.erase(std::unique(blocks.begin(), blocks.end()), blocks.end());
+      pt.originalFirst[i] = uint32_t(pt.original.size());
+      pt.originalCount[i] = uint32_t(blocks.size());
+      pt.original.insert(pt.original.end(), blocks.begin(), blocks.end());
+    }
+    bi.trees.push_back(std::move(pt));
+  }
+  return bi;
+}
+
+ViewContext makeViewContext(const MtaMeta& meta, const ViewParams& view) {
+  if (view.width == 0 || view.height == 0) throw Error("view: the frame size must be at least 1 x 1");
+  validate(view.camera, "view");
+  ViewContext c;
+  c.frustum = frustumOf(view.camera, view.width, view.height);
+  c.eye = view.camera.eye;
+  const double tx = view.camera.tanHalfFovX;
+  const double ty = tx * double(view.height) / double(view.width);
+  // cos²θ of the frustum's corner ray: 1 / (1 + tan²x + tan²y). A point at distance r and angle θ from
+  // the view axis has depth r·cosθ, and the projection's largest singular value there is f / (r·cos²θ).
+  c.distanceFactor = view.conservative ? 1.0 / (1.0 + tx * tx + ty * ty) : 1.0;
+  const double tauBuild = meta.params.tau, tauFrame = view.tau > 0.0 ? view.tau : meta.params.tau;
+  c.minDistanceScale = (double(view.width) / double(meta.params.screenWidth)) * (meta.params.tanHalfFov / tx) * (tauBuild / tauFrame);
+  return c;
+}
+
+namespace {
+
+struct Walker {
+  const MtaMeta& meta;
+  const BlockIndex& index;
+  const ViewContext& ctx;
+
+  bool culled(const Node& n) const { return outsideFrustum(ctx.frustum, n.bounds); }
+  double distance(const Node& n) const { return distanceToBox(ctx.eye, n.bounds); }
+  bool atlasSufficient(const Node& n, double d) const {
+    return d * ctx.distanceFactor >= double(n.minDistance) * ctx.minDistanceScale;
+  }
+};
+
+void mark(std::vector<BlockPriority>& pr, uint32_t block, Usage u, double d, uint32_t level) {
+  const BlockPriority candidate{u, d, level};
+  // A block in several roles (an original block shared by leaves) takes its most pressing one.
+  if (morePressing(candidate, block, pr[block], block)) pr[block] = candidate;
+}
+
+void markAtlas(const Walker& w, std::vector<BlockPriority>& pr, size_t tree, uint32_t node, Usage u, double d) {
+  const auto& pt = w.index.trees[tree];
+  const uint32_t level = w.meta.trees[tree].nodes[node].level;
+  for (uint32_t l = 0; l < w.index.layerCount; ++l) mark(pr, pt.atlas[pt.atlasFirst[node] + l], u, d, level);
+}
+
+void markOriginals(const Walker& w, std::vector<BlockPriority>& pr, size_t tree, uint32_t node, Usage u, double d) {
+  const auto& pt = w.index.trees[tree];
+  const uint32_t level = w.meta.trees[tree].nodes[node].level + 1;  // just below the leaf's own atlas
+  for (uint32_t k = 0; k < pt.originalCount[node]; ++k) mark(pr, pt.original[pt.originalFirst[node] + k], u, d, level);
+}
+
+// Simulates rendering with every block in memory (§4.6: "a separate tree traversal that simulates the
+// rendering process assuming that all nodes are currently in memory").
+void usageVisit(const Walker& w, std::vector<BlockPriority>& pr, size_t tree, uint32_t n) {
+  const Node& node = w.meta.trees[tree].nodes[n];
+  const double d = w.distance(node);
+  markAtlas(w, pr, tree, n, Usage::Needed, d);
+  if (w.atlasSufficient(node, d)) {
+    // Prefetch the next refinement step.
+    if (node.leaf()) markOriginals(w, pr, tree, n, Usage::ParentNeeded, d);
+    else
+      for (int32_t c : node.children)
+        if (c >= 0) markAtlas(w, pr, tree, uint32_t(c), Usage::ParentNeeded, w.distance(w.meta.trees[tree].nodes[uint32_t(c)]));
+    return;
+  }
+  if (node.leaf()) {
+    markOriginals(w, pr, tree, n, Usage::Needed, d);
+    return;
+  }
+  bool anyVisible = false;
+  for (int32_t c : node.children)
+    if (c >= 0 && !w.culled(w.meta.trees[tree].nodes[uint32_t(c)])) {
+      anyVisible = true;
+      usageVisit(w, pr, tree, uint32_t(c));
+    }
+  if (!anyVisible) return;
+  for (int32_t c : node.children)
+    if (c >= 0 && w.culled(w.meta.trees[tree].nodes[uint32_t(c)]))
+      markAtlas(w, pr, tree, uint32_t(c), Usage::Culled, w.distance(w.meta.trees[tree].nodes[uint32_t(c)]));
+}
+
+struct Planner {
+  const Walker& w;
+  const RuntimeGeometry& g;
+  const std::function<bool(uint32_t)>& resident;
+  FramePlan& plan;
+  std::vector<PlannedDraw> white;  // untextured triangles, drawn last with the white texture
+
+  bool atlasResident(size_t tree, uint32_t n) const {
+    const auto& pt = w.index.trees[tree];
+    for (uint32_t l = 0; l < w.index.layerCount; ++l)
+      if (!resident(pt.atlas[pt.atlasFirst[n] + l])) return false;
+    return true;
+  }
+  bool originalsResident(size_t tree, uint32_t n) const {
+    const auto& pt = w.index.trees[tree];
+    for (uint32_t k = 0; k < pt.originalCount[n]; ++k)
+      if (!resident(pt.original[pt.originalFirst[n] + k])) return false;
+    return true;
+  }
+  // Figure 30.
+  bool refinementPossible(size_t tree, uint32_t n) const {
+    const Node& node = w.meta.trees[tree].nodes[n];
+    if (node.leaf()) return originalsResident(tree, n);
+    for (int32_t c : node.children)
+      if (c >= 0 && !atlasResident(tree, uint32_t(c)) && !w.culled(w.meta.trees[tree].nodes[uint32_t(c)])) return false;
+    return true;
+  }
+
+  static void append(std::vector<PlannedDraw>& out, PlannedDraw d) {
+    if (d.count == 0) return;
+    PlannedDraw* last = out.empty() ? nullptr : &out.back();
+    // Adjacent ranges with the same texture become one draw (§4.8.1).
+    if (last && last->source == d.source && last->tree == d.tree && last->node == d.node && last->texture == d.texture &&
+        last->first + last->count == d.first) {
+      last->count += d.count;
+      return;
+    }
+    out.push_back(d);
+  }
+
+  void leafRanges(size_t tree, uint32_t leaf, DrawSource src, uint32_t atlasNode) {
+    const LeafRuns& lr = g.trees[tree].leaf[leaf];
+    ++plan.leavesDrawn;
+    plan.trianglesDrawn += lr.texturedCount + lr.untexturedCount;
+    if (src == DrawSource::White) {
+      append(plan.draws, {DrawSource::White, uint8_t(tree), 0, -1, lr.texturedFirst, lr.texturedCount + lr.untexturedCount});
+      return;
+    }
+    if (src == DrawSource::Atlas) append(plan.draws, {DrawSource::Atlas, uint8_t(tree), atlasNode, -1, lr.texturedFirst, lr.texturedCount});
+    else
+      for (uint32_t r = 0; r < lr.runCount; ++r) {
+        const TextureRun& run = g.runs[lr.runFirst + r];
+        if (run.texture >= 0) append(plan.draws, {DrawSource::Original, uint8_t(tree), leaf, run.texture, run.first, run.count});
+      }
+    append(white, {DrawSource::White, uint8_t(tree), 0, -1, lr.texturedFirst + lr.texturedCount, lr.untexturedCount});
+  }
+
+  // renderNode (Figure 26): the node's atlas for every visible leaf below it.
+  void atlasLeaves(size_t tree, uint32_t n, uint32_t atlasNode) {
+    const Node& node = w.meta.trees[tree].nodes[n];
+    if (w.culled(node)) return;
+    if (node.leaf()) {
+      leafRanges(tree, n, DrawSource::Atlas, atlasNode);
+      return;
+    }
+    for (int32_t c : node.children)
+      if (c >= 0) atlasLeaves(tree, uint32_t(c), atlasNode);
+  }
+
+  void visitTree(size_t tree, uint32_t n) {
+    const Node& node = w.meta.trees[tree].nodes[n];
+    if (w.culled(node)) return;
+    const double d = w.distance(node);
+    bool useAtlas = w.atlasSufficient(node, d);
+    if (!useAtlas && !refinementPossible(tree, n)) {
+      useAtlas = true;
+      ++plan.coarserThanNeeded;
+    }
+    if (useAtlas) {
+      ++plan.atlasNodes;
+      atlasLeaves(tree, n, n);
+    } else if (node.leaf()) {
+      ++plan.originalLeaves;
+      leafRanges(tree, n, DrawSource::Original, 0);
+    } else {
+      for (int32_t c : node.children)
+        if (c >= 0) visitTree(tree, uint32_t(c));
+    }
+  }
+
+  // The comparison runs: every visible leaf, no distance test.
+  void visitAll(size_t tree, uint32_t n, DrawSource src) {
+    const Node& node = w.meta.trees[tree].nodes[n];
+    if (w.culled(node)) return;
+    if (node.leaf()) {
+      if (src == DrawSource::Original) ++plan.originalLeaves;
+      leafRanges(tree, n, src, 0);
+      return;
+    }
+    for (int32_t c : node.children)
+      if (c >= 0) visitAll(tree, uint32_t(c), src);
+  }
+};
+
+}  // namespace
+
+std::vector<BlockPriority> usagePriorities(const MtaMeta& meta, const BlockIndex& index, const ViewContext& ctx) {
+  std::vector<BlockPriority> pr(meta.blocks.size());
+  const Walker w{meta, index, ctx};
+  for (size_t t = 0; t < meta.trees.size(); ++t)
+    if (!meta.trees[t].nodes.empty() && !w.culled(meta.trees[t].nodes[0])) usageVisit(w, pr, t, 0);
+  return pr;
+}
+
+FramePlan planFrame(const MtaMeta& meta, const RuntimeGeometry& geometry, const BlockIndex& index, const ViewContext& ctx,
+                    RenderMode mode, const std::function<bool(uint32_t)>& resident) {
+  FramePlan plan;
+  const Walker w{meta, index, ctx};
+  Planner p{w, geometry, resident, plan, {}};
+  for (size_t t = 0; t < meta.trees.size(); ++t) {
+    if (meta.trees[t].nodes.empty()) continue;
+    switch (mode) {
+      case RenderMode::AtlasTree: p.visitTree(t, 0); break;
+      case RenderMode::Original: p.visitAll(t, 0, DrawSource::Original); break;
+      case RenderMode::Dummy: p.visitAll(t, 0, DrawSource::White); break;
+    }
+  }
+  for (const PlannedDraw& d : p.white) Planner::append(plan.draws, d);
+  return plan;
+}
+
+}  // namespace tessera::mta

@@ -1,0 +1,95 @@
+// The two per-frame traversals of the atlas tree: the usage traversal of the memory manager (thesis
+// §4.6) and the rendering traversal (§4.4, Figure 26, with the refinementPossible change of Figure 30).
+//
+// Implements:
+// - the distance test "d >= N.minDistance" with minDistance rescaled from the build's screen width,
+//   field of view and τ to the frame's (f_proj, §4.5.2, is linear in each), and d the distance from the
+//   eye to N.bounds, optionally made conservative (ViewParams::conservative, docs/mta-render.md): d is
+//   multiplied by cos²θ_max, θ_max the angle between the view axis and the frustum's corner ray. The
+//   thesis's estimate assumes a segment seen on the view axis; off axis a perspective projection
+//   magnifies by up to 1/cos²θ, so only the conservative test makes the τ guarantee hold per pixel;
+// - usage categories per block (Needed: every atlas on the rendering path and the originals of refined
+//   leaves; Culled: the atlas of a culled child of a refined node with a visible sibling; Parent needed:
+//   the children's atlases / the leaf's originals of a node drawn with its atlas), the priority key
+//   (usage, distance, level) per block;
+// - the draw plan: which node atlases and which original textures draw which triangle ranges, for the
+//   atlas tree and for the comparison runs of the thesis's §4.7.2 (original textures for every visible
+//   leaf; one dummy texture for everything).
+// Does not implement: loading (residency.h), command recording (frame_recorder.h).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "mta/camera.h"
+#include "mta/paging_file.h"
+#include "mta/residency.h"
+#include "mta/runtime_geometry.h"
+
+namespace tessera::mta {
+
+enum class RenderMode : uint8_t {
+  AtlasTree = 0,  // §4.4 with the memory manager
+  Original = 1,   // every visible leaf with its original textures (run 1 of §4.7.2)
+  Dummy = 2,      // every visible leaf with one white texture (run 2: an upper bound, wrong image)
+};
+const char* renderModeName(RenderMode m);
+
+struct ViewParams {
+  Camera camera;
+  uint32_t width = 1024, height = 768;
+  double tau = 0.0;           // runtime τ; 0 = the build's
+  bool conservative = true;   // cos²θ_max distance correction (see above)
+};
+
+// Which blocks each node needs: its atlas blocks (one per layer) and, for leaves, the blocks holding
+// pieces of its original images.
+struct BlockIndex {
+  struct PerTree {
+    std::vector<uint32_t> atlasFirst;                 // per node: into atlas (layerCount each)
+    std::vector<uint32_t> atlas;
+    std::vector<uint32_t> originalFirst, originalCount;  // per node (leaves), into original
+    std::vector<uint32_t> original;
+  };
+  std::vector<PerTree> trees;
+  uint32_t layerCount = 1;
+};
+BlockIndex buildBlockIndex(const MtaMeta& meta);
+
+// Per-frame derived view quantities shared by both traversals.
+struct ViewContext {
+  Frustum frustum;
+  std::array<double, 3> eye{};
+  double distanceFactor = 1.0;    // cos²θ_max or 1
+  double minDistanceScale = 1.0;  // build -> frame rescaling of minDistance
+};
+ViewContext makeViewContext(const MtaMeta& meta, const ViewParams& view);
+
+// One entry per paging-file block.
+std::vector<BlockPriority> usagePriorities(const MtaMeta& meta, const BlockIndex& index, const ViewContext& ctx);
+
+enum class DrawSource : uint8_t { Atlas, Original, White };
+struct PlannedDraw {
+  DrawSource source = DrawSource::Atlas;
+  uint8_t tree = 0;
+  uint32_t node = 0;      // Atlas: the node whose atlas is bound; Original: the leaf
+  int32_t texture = -1;   // Original: scene texture
+  uint32_t first = 0, count = 0;  // global triangles (runtime_geometry.h)
+};
+
+struct FramePlan {
+  std::vector<PlannedDraw> draws;
+  uint32_t atlasNodes = 0;       // nodes drawn with their atlas
+  uint32_t originalLeaves = 0;   // leaves drawn with original textures
+  uint32_t coarserThanNeeded = 0;  // nodes drawn with their atlas only because refinement was impossible (Figure 30)
+  uint32_t leavesDrawn = 0;
+  uint64_t trianglesDrawn = 0;
+};
+
+// resident(block): whether a block is in memory (AtlasTree mode; ignored by the other modes).
+FramePlan planFrame(const MtaMeta& meta, const RuntimeGeometry& geometry, const BlockIndex& index, const ViewContext& ctx,
+                    RenderMode mode, const std::function<bool(uint32_t)>& resident);
+
+}  // namespace tessera::mta

@@ -1,0 +1,252 @@
+// The atlas tree at run time: the memory manager's invariants over a whole path (§4.6), the rendering
+// traversal's fallback (Figure 30), the comparison runs, determinism, and the texel guarantee.
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "mta/build.h"
+#include "mta/texel_ratio.h"
+#include "mta/tree_renderer.h"
+#include "raster/sha256.h"
+#include "mta_test_scene.h"
+
+namespace tessera::mta {
+namespace {
+
+using testing::gridScene;
+using testing::TempFile;
+
+// A 12 x 12 wall of textured unit quads in the x-y plane, built with small atlases and a small d_min so
+// the tree is several levels deep.
+struct Fixture {
+  TempFile file{"runtime.mta"};
+  std::unique_ptr<PagingFile> tree;
+  Fixture() {
+    BuildParams p;
+    p.atlasSize = 64;
+    p.border = 2;
+    p.dMin = 1.5;
+    p.screenWidth = 256;
+    p.threads = 2;
+    buildMta(gridScene(12, 12, 32, 2.0f), p, file.path);
+    tree = std::make_unique<PagingFile>(file.path);
+  }
+};
+
+Fixture& fixture() {
+  static Fixture f;
+  return f;
+}
+
+// Approach the wall from far away, then pan along it close up, then pull back.
+std::vector<Camera> path() {
+  std::vector<Camera> cams;
+  for (int i = 0; i < 48; ++i) {
+    Camera c;
+    const double t = i / 47.0;
+    double x = 6.0, z = 40.0 - 38.0 * (t < 0.5 ? 2 * t : 1.0);
+    if (t >= 0.5) x = 1.0 + 10.0 * (t - 0.5) * 2.0;
+    if (i > 40) z = 2.0 + 4.0 * (i - 40);
+    c.eye = {x, 6.0, z};
+    c.target = {x, 6.0, 0.0};
+    c.tanHalfFovX = fixture().tree->meta().params.tanHalfFov;
+    c.nearPlane = 0.05;
+    c.farPlane = 200.0;
+    cams.push_back(c);
+  }
+  return cams;
+}
+
+RendererOptions options(uint64_t capacity, LoadBudget budget) {
+  RendererOptions o;
+  o.width = 128;
+  o.height = 96;
+  o.threads = 2;
+  o.residency.capacityBytes = capacity;
+  o.residency.budget = budget;
+  o.residency.maxQueue = 8;
+  return o;
+}
+
+uint64_t atlasBytes() {
+  const MtaMeta& m = fixture().tree->meta();
+  return uint64_t(m.params.atlasSize) * m.params.atlasSize * 3;
+}
+
+TEST(Residency, CapacityIsNeverExceededAndTheRootAtlasStaysResident) {
+  const PagingFile& f = *fixture().tree;
+  ASSERT_GT(f.meta().trees[0].nodes.size(), 20u) << "the fixture should give a deep tree";
+  LoadBudget b;
+  b.kind = LoadBudget::Kind::Blocks;
+  b.perFrame = 2;
+  TreeRenderer r(f, options(atlasBytes() * 7, b));
+  const uint32_t root = f.meta().trees[0].atlasBlocks[0];
+  uint64_t evicted = 0;
+  for (const Camera& c : path()) {
+    const FrameResult fr = r.renderFrame(c);
+    EXPECT_LE(fr.bytesResident, fr.capacityBytes) << "frame " << fr.frame;
+    EXPECT_TRUE(r.residency()->resident(root)) << "frame " << fr.frame;
+    evicted += fr.residency.blocksEvicted;
+  }
+  EXPECT_LE(r.residency()->peakBytesResident(), atlasBytes() * 7);
+  EXPECT_GT(evicted, 0u) << "the capacity should be tight enough to force evictions";
+}
+
+TEST(Residency, BlocksAreLoadedInPriorityOrderWithinEachFrame) {
+  const PagingFile& f = *fixture().tree;
+  LoadBudget b;
+  b.kind = LoadBudget::Kind::Blocks;
+  b.perFrame = 3;
+  ResidencyOptions ro;
+  ro.capacityBytes = atlasBytes() * 12;
+  ro.budget = b;
+  ro.maxQueue = 6;
+  Residency res(f, ro);
+  const BlockIndex index = buildBlockIndex(f.meta());
+  ViewParams v;
+  v.width = 128;
+  v.height = 96;
+  for (const Camera& c : path()) {
+    v.camera = c;
+    const auto pr = usagePriorities(f.meta(), index, makeViewContext(f.meta(), v));
+    const ResidencyFrameStats& s = res.update(pr);
+    for (size_t i = 1; i < s.loadOrder.size(); ++i)
+      EXPECT_FALSE(morePressing(pr[s.loadOrder[i]], s.loadOrder[i], pr[s.loadOrder[i - 1]], s.loadOrder[i - 1]))
+          << "a more pressing block was loaded after a less pressing one";
+    for (uint32_t blk : s.loadOrder) EXPECT_NE(pr[blk].usage, Usage::Unused);
+    EXPECT_LE(res.bytesResident(), ro.capacityBytes);
+  }
+}
+
+TEST(Residency, BudgetParsingNamesTheOptionAndTheUnit) {
+  EXPECT_EQ(LoadBudget::parse("8MiB", "--budget").perFrame, 8u << 20);
+  EXPECT_EQ(LoadBudget::parse("4blocks", "--budget").kind, LoadBudget::Kind::Blocks);
+  EXPECT_EQ(LoadBudget::parse("5ms", "--budget").kind, LoadBudget::Kind::Time);
+  try {
+    LoadBudget::parse("8 furlongs", "--budget");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--budget"), std::string::npos);
+  }
+  EXPECT_THROW(LoadBudget::parse("-3", "--budget"), Error);
+}
+
+TEST(Residency, ACapacityBelowTheRootAtlasIsRefused) {
+  ResidencyOptions ro;
+  ro.capacityBytes = atlasBytes() - 1;
+  EXPECT_THROW(Residency(*fixture().tree, ro), Error);
+}
+
+TEST(TreeRenderer, WithOnlyTheRootInMemoryEverythingIsDrawnWithTheRootAtlas) {
+  const PagingFile& f = *fixture().tree;
+  LoadBudget b;
+  b.kind = LoadBudget::Kind::Blocks;
+  b.perFrame = 1;
+  TreeRenderer r(f, options(atlasBytes(), b));  // room for the root alone: nothing can ever be loaded
+  const Camera close = path()[23];
+  const FrameResult fr = r.renderFrame(close);
+  EXPECT_EQ(fr.plan.atlasNodes, 1u);
+  EXPECT_EQ(fr.plan.coarserThanNeeded, 1u);
+  EXPECT_EQ(fr.counters.texture_state_changes, 1u);
+  EXPECT_GT(fr.plan.trianglesDrawn, 0u);
+}
+
+TEST(TreeRenderer, WithAnUnlimitedBudgetNoNeededBlockIsMissing) {
+  const PagingFile& f = *fixture().tree;
+  LoadBudget b;
+  b.kind = LoadBudget::Kind::Blocks;
+  b.perFrame = UINT64_MAX;
+  RendererOptions o = options(uint64_t(1) << 32, b);
+  o.residency.maxQueue = UINT32_MAX;
+  TreeRenderer r(f, o);
+  bool sawOriginals = false, sawInner = false;
+  for (const Camera& c : path()) {
+    const FrameResult fr = r.renderFrame(c);
+    EXPECT_EQ(fr.residency.neededMissing, 0u) << "frame " << fr.frame;
+    EXPECT_EQ(fr.plan.coarserThanNeeded, 0u) << "frame " << fr.frame;
+    sawOriginals |= fr.plan.originalLeaves > 0;
+    sawInner |= fr.plan.atlasNodes > 0 && fr.plan.originalLeaves == 0;
+  }
+  EXPECT_TRUE(sawOriginals) << "the close-up frames should refine to original textures";
+  EXPECT_TRUE(sawInner);
+}
+
+TEST(TreeRenderer, TheThreeRunsDrawExactlyTheSameTriangles) {
+  const PagingFile& f = *fixture().tree;
+  LoadBudget b;
+  b.kind = LoadBudget::Kind::Blocks;
+  b.perFrame = 2;
+  RendererOptions atlas = options(atlasBytes() * 8, b), orig = atlas, dummy = atlas;
+  orig.mode = RenderMode::Original;
+  dummy.mode = RenderMode::Dummy;
+  TreeRenderer ra(f, atlas), ro(f, orig), rd(f, dummy);
+  for (const Camera& c : path()) {
+    const FrameResult a = ra.renderFrame(c), o = ro.renderFrame(c), d = rd.renderFrame(c);
+    EXPECT_EQ(a.plan.trianglesDrawn, o.plan.trianglesDrawn);
+    EXPECT_EQ(d.plan.trianglesDrawn, o.plan.trianglesDrawn);
+    EXPECT_LE(d.counters.texture_state_changes, 1u);
+    EXPECT_LE(d.counters.draw_calls, o.counters.draw_calls);
+  }
+}
+
+std::vector<std::string> imageHashes(int threads, LoadBudget b) {
+  RendererOptions o = options(atlasBytes() * 8, b);
+  o.threads = threads;
+  TreeRenderer r(*fixture().tree, o);
+  std::vector<std::string> h;
+  for (const Camera& c : path()) h.push_back(sha256Hex(r.renderFrame(c).image));
+  return h;
+}
+
+TEST(TreeRenderer, DeterministicBudgetsGiveTheSameFramesForAnyThreadCount) {
+  LoadBudget b;
+  b.kind = LoadBudget::Kind::Bytes;
+  b.perFrame = atlasBytes() / 2;  // a block takes two frames
+  const auto one = imageHashes(1, b);
+  EXPECT_EQ(one, imageHashes(2, b));
+  EXPECT_EQ(one, imageHashes(5, b));
+  EXPECT_EQ(std::set<std::string>(one.begin(), one.end()).size() > 10, true) << "the path should change the image";
+}
+
+TEST(TexelAnalysis, NoAtlasPixelMagnifiesBeyondTauWhenEveryNeededBlockIsResident) {
+  const PagingFile& f = *fixture().tree;
+  LoadBudget b;
+  b.kind = LoadBudget::Kind::Blocks;
+  b.perFrame = UINT64_MAX;
+  RendererOptions o = options(uint64_t(1) << 32, b);
+  o.residency.maxQueue = UINT32_MAX;
+  TreeRenderer r(f, o);
+  uint64_t atlasPixels = 0;
+  for (const Camera& c : path()) {
+    const FrameResult fr = r.renderFrame(c);
+    const TexelFrame t = analyzeTexels(r, c, fr, r.triangleIds(c, fr.plan), f.meta().params.tau);
+    EXPECT_EQ(t.magnificationViolations, 0u) << "frame " << fr.frame << ", max ratio " << t.maxAtlasRatioBase;
+    atlasPixels += t.pixelsAtlas;
+  }
+  EXPECT_GT(atlasPixels, 10000u);
+}
+
+TEST(TexelAnalysis, AFrameDrawnWithTheRootAloneReportsViolationsUpClose) {
+  const PagingFile& f = *fixture().tree;
+  LoadBudget b;
+  b.kind = LoadBudget::Kind::Blocks;
+  b.perFrame = 1;
+  TreeRenderer r(f, options(atlasBytes(), b));
+  const Camera close = path()[23];
+  const FrameResult fr = r.renderFrame(close);
+  const TexelFrame t = analyzeTexels(r, close, fr, r.triangleIds(close, fr.plan), f.meta().params.tau);
+  EXPECT_GT(t.magnificationViolations, 1000u);
+  EXPECT_EQ(t.pixelsOriginal, 0u);
+}
+
+TEST(TexelAnalysis, RatioBinsAreThePowersOfTheSquareRootOfTwo) {
+  EXPECT_EQ(ratioBinLower(0), 0.0);
+  EXPECT_EQ(ratioBinLower(1), 0.25);
+  EXPECT_EQ(ratioBinLower(5), 1.0);
+  EXPECT_EQ(ratioBinLower(7), 2.0);
+  EXPECT_EQ(ratioBinLower(11), 8.0);
+  EXPECT_NEAR(ratioBinLower(6), 1.4142135623730951, 1e-15);
+}
+
+}  // namespace
+}  // namespace tessera::mta

@@ -1,0 +1,131 @@
+#include "tools/cli/mta_path_run.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+#include "raster/image_io.h"
+#include "tools/cli/frame_job.h"
+
+namespace tessera::cli {
+
+void addPathRunOptions(CLI::App* cmd, PathRunArgs& a, bool withMemory) {
+  std::string names;
+  for (const std::string& n : mta::builtinPathNames()) names += (names.empty() ? "" : ", ") + n;
+  cmd->add_option("--path", a.path, "Camera path: a built-in name (" + names + ") laid out over the scene, or a path file (docs/mta-camera-path.md)")
+      ->capture_default_str();
+  cmd->add_option("--frames", a.frames, "Number of frames (0 = the path's own; built-in paths are resampled)");
+  cmd->add_option("--size", a.size, "Frame size WxH (minDistance is rescaled from the build's screen width)")->capture_default_str();
+  if (withMemory) {
+    cmd->add_option("--capacity", a.capacityMiB, "Memory manager capacity k in MiB of paging-file blocks (never exceeded)")
+        ->capture_default_str();
+    cmd->add_option("--budget", a.budget,
+                    "Loading per frame: bytes (e.g. 8MiB, 500KiB), blocks (4blocks) - deterministic - or a wall-clock slot "
+                    "with a background loader (5ms; not reproducible); 'unlimited' loads the whole ideal set every frame")
+        ->capture_default_str();
+    cmd->add_option("--queue", a.queue, "Request queue length")->capture_default_str();
+  }
+  cmd->add_option("--tau", a.tau, "Pixel-per-texel ratio at run time (default: the build's)");
+  cmd->add_flag("--thesis-distance", a.thesisDistance,
+                "Use the thesis's plain distance test; by default d is scaled by cos^2 of the frustum's corner angle so that "
+                "the tau guarantee holds at every pixel (docs/mta-render.md)");
+  cmd->add_option("--threads", a.threads, "Oracle threads (0 = all; images never depend on it)");
+  cmd->add_option("--save-every", a.saveEvery, "Write every N-th frame as PNG (0 = none); the last frame is always written")
+      ->capture_default_str();
+  cmd->add_option("-o,--output", a.out, "Output directory")->required();
+  cmd->add_flag("--quiet", a.quiet, "No progress on stderr");
+}
+
+mta::CameraPath loadPath(const PathRunArgs& a, const mta::MtaMeta& meta) {
+  const auto names = mta::builtinPathNames();
+  mta::CameraPath p;
+  if (std::find(names.begin(), names.end(), a.path) != names.end()) {
+    std::array<float, 6> b{1e30f, 1e30f, 1e30f, -1e30f, -1e30f, -1e30f};
+    for (const mta::Tree& t : meta.trees) {
+      if (t.nodes.empty()) continue;
+      for (int k = 0; k < 3; ++k) {
+        b[k] = std::min(b[k], t.nodes[0].bounds[k]);
+        b[k + 3] = std::max(b[k + 3], t.nodes[0].bounds[k + 3]);
+      }
+    }
+    if (b[0] > b[3]) throw Error("the tree has no triangles: no camera path can be laid out over it");
+    p = mta::builtinPath(a.path, b, a.frames);
+    // The build's field of view, so that minDistance needs no rescaling for it.
+    for (mta::Camera& c : p.frames) c.tanHalfFovX = meta.params.tanHalfFov;
+  } else {
+    if (!std::filesystem::exists(a.path))
+      throw Error("--path '" + a.path + "': neither a built-in path (" + [&] {
+        std::string s;
+        for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+        return s;
+      }() + ") nor an existing file");
+    p = mta::readPathFile(a.path);
+    if (a.frames && a.frames < p.frames.size()) p.frames.resize(a.frames);
+  }
+  return p;
+}
+
+mta::RendererOptions rendererOptions(const PathRunArgs& a, mta::RenderMode mode) {
+  mta::RendererOptions o;
+  o.mode = mode;
+  const auto [w, h] = parseSize(a.size, "--size");
+  o.width = uint32_t(w);
+  o.height = uint32_t(h);
+  o.tau = a.tau;
+  if (a.tau < 0.0) throw Error("--tau must be positive");
+  o.conservative = !a.thesisDistance;
+  o.threads = a.threads;
+  if (!(a.capacityMiB > 0.0) || a.capacityMiB > 1e9) throw Error("--capacity must be a positive number of MiB");
+  o.residency.capacityBytes = uint64_t(a.capacityMiB * 1048576.0);
+  if (a.budget == "unlimited") {
+    o.residency.budget.kind = mta::LoadBudget::Kind::Blocks;
+    o.residency.budget.perFrame = UINT64_MAX;
+    o.residency.maxQueue = UINT32_MAX;
+  } else {
+    o.residency.budget = mta::LoadBudget::parse(a.budget, "--budget");
+    o.residency.maxQueue = a.queue;
+  }
+  return o;
+}
+
+nlohmann::json optionsJson(const PathRunArgs& a, const mta::RendererOptions& o, const mta::CameraPath& path) {
+  return {{"input", a.input},
+          {"path", a.path},
+          {"path_name", path.name},
+          {"frames", path.frames.size()},
+          {"width", o.width},
+          {"height", o.height},
+          {"capacity_bytes", o.residency.capacityBytes},
+          {"budget", a.budget == "unlimited" ? std::string("unlimited") : o.residency.budget.describe()},
+          {"queue", o.residency.maxQueue},
+          {"tau", o.tau},
+          {"distance_test", o.conservative ? "conservative (cos^2 of the corner angle)" : "thesis (plain distance)"}};
+}
+
+void writeFramePng(const std::string& path, uint32_t w, uint32_t h, const std::vector<uint8_t>& bottomUp) {
+  std::vector<uint8_t> top(bottomUp.size());
+  const size_t row = size_t(w) * 4;
+  for (uint32_t y = 0; y < h; ++y) std::copy_n(bottomUp.data() + size_t(h - 1 - y) * row, row, top.data() + size_t(y) * row);
+  writePngRGBA8(path, int(w), int(h), top.data());
+}
+
+void writeChartPng(const std::string& path, const verify::RgbaCanvas& c) { writePngRGBA8(path, c.width(), c.height(), c.data()); }
+
+Progress::Progress(std::string label, size_t total, bool quiet) : label_(std::move(label)), total_(total), quiet_(quiet) {}
+
+void Progress::tick(size_t done, const std::string& detail) {
+  if (quiet_) return;
+  const double now = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  if (now - last_ < 2.0 && done != total_) return;
+  last_ = now;
+  std::fprintf(stderr, "%s: frame %zu/%zu %s\n", label_.c_str(), done, total_, detail.c_str());
+}
+
+std::pair<double, double> maxMean(const std::vector<double>& v) {
+  double mx = 0.0, sum = 0.0;
+  for (double x : v) mx = std::max(mx, x), sum += x;
+  return {mx, v.empty() ? 0.0 : sum / double(v.size())};
+}
+
+}  // namespace tessera::cli

@@ -1,0 +1,61 @@
+// What `tessera mta render`, `tessera mta runs` and `tessera texel` share: opening a tree, choosing a
+// camera path, the renderer options, saving frames and plots.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "mta/camera_path.h"
+#include "mta/paging_file.h"
+#include "mta/tree_renderer.h"
+#include "verify/line_chart.h"
+
+namespace tessera::cli {
+
+struct PathRunArgs {
+  std::string input;          // .mta (or, for texel, a model file built first)
+  std::string out;
+  std::string path = "thesis";
+  uint32_t frames = 0;        // 0 = the path's own count
+  std::string size = "1024x768";
+  double capacityMiB = 100.0; // the thesis's 100 MB
+  std::string budget = "8MiB";
+  uint32_t queue = 32;
+  double tau = 0.0;
+  bool thesisDistance = false;
+  int threads = 0;
+  uint32_t saveEvery = 25;    // 0 = no frame images
+  bool quiet = false;
+};
+
+// Registers the options above on a subcommand.
+void addPathRunOptions(CLI::App* cmd, PathRunArgs& a, bool withMemory);
+
+mta::CameraPath loadPath(const PathRunArgs& a, const mta::MtaMeta& meta);
+mta::RendererOptions rendererOptions(const PathRunArgs& a, mta::RenderMode mode);
+nlohmann::json optionsJson(const PathRunArgs& a, const mta::RendererOptions& o, const mta::CameraPath& path);
+
+// RGBA8 rows bottom first -> PNG (top first), atomically.
+void writeFramePng(const std::string& path, uint32_t w, uint32_t h, const std::vector<uint8_t>& bottomUp);
+void writeChartPng(const std::string& path, const verify::RgbaCanvas& c);
+
+// Prints "label frame i/n (..)" about every 2 s on stderr unless quiet.
+class Progress {
+ public:
+  Progress(std::string label, size_t total, bool quiet);
+  void tick(size_t done, const std::string& detail);
+
+ private:
+  std::string label_;
+  size_t total_;
+  bool quiet_;
+  double last_ = -1e9;
+};
+
+// max, mean of a series.
+std::pair<double, double> maxMean(const std::vector<double>& v);
+
+}  // namespace tessera::cli
