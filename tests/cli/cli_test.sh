@@ -9,11 +9,14 @@ json_field() { python3 -c "import json,sys; d=json.load(open(sys.argv[1])); prin
 
 case "$case_name" in
   demo_writes_report_and_images)
-    "$tessera" demo -o demo --threads 2 > stdout.json
-    for f in report.json index.html fill_fan.png city_block.png city_ids.exr city_ids.a1.exr city_block.tframe; do
+    "$tessera" demo -o demo --threads 2 --railway "$src/../shared/data/railway.glb" > stdout.json
+    for f in report.json index.html fill_fan.png city_block.png city_ids.exr city_ids.a1.exr city_block.tframe \
+             mta/render/plot.png mta/runs/runs.png mta/texel/histogram.png mta/render/frames.json; do
       [ -s "demo/$f" ] || fail "demo did not write $f"
     done
     [ "$(json_field demo/report.json "['bit_identical_1_vs_n_threads']")" = "True" ] || fail "thread check failed"
+    [ "$(json_field demo/report.json "['atlas_tree']['texel']['magnification_violations_when_every_needed_block_resident']")" = "0" ] \
+      || fail "the demo's atlas tree magnifies beyond tau"
     ;;
   replay_matches_render)
     "$tessera" render texture_array --threads 2 -o a.png --stats a.json --record a.tframe > /dev/null

@@ -40,7 +40,7 @@ std::string frameName(const char* prefix, size_t i) {
 
 // ---- mta render ----
 
-void runRender(const PathRunArgs& a) {
+nlohmann::json runRenderImpl(const PathRunArgs& a) {
   mta::PagingFile file(a.input);
   const mta::CameraPath path = loadPath(a, file.meta());
   const mta::RendererOptions o = rendererOptions(a, mta::RenderMode::AtlasTree);
@@ -119,7 +119,7 @@ void runRender(const PathRunArgs& a) {
                         {"frame time (ms)", column(rows, "frame_time_ms"), kRed, false, 1}}};
   panels.push_back(verify::drawLineChart(c4));
   writeChartPng((fs::path(a.out) / "plot.png").string(), verify::stackCharts(panels));
-  std::printf("%s\n", summary.dump(2).c_str());
+  return summary;
 }
 
 // ---- mta runs: the three runs of §4.7.2 ----
@@ -149,7 +149,7 @@ ImageError imageError(const std::vector<uint8_t>& a, const std::vector<uint8_t>&
   return e;
 }
 
-void runRuns(const PathRunArgs& a, int tolerance) {
+nlohmann::json runRunsImpl(const PathRunArgs& a, int tolerance) {
   mta::PagingFile file(a.input);
   const mta::CameraPath path = loadPath(a, file.meta());
   fs::create_directories(a.out);
@@ -227,7 +227,7 @@ void runRuns(const PathRunArgs& a, int tolerance) {
   panels.push_back(verify::drawLineChart({"Atlas tree vs original textures", "frame", "PSNR (dB)",
                                           {{"PSNR (dB)", psnr, kGreen, false, 2}}}));
   writeChartPng((fs::path(a.out) / "runs.png").string(), verify::stackCharts(panels));
-  std::printf("%s\n", summary.dump(2).c_str());
+  return summary;
 }
 
 // ---- texel ----
@@ -252,7 +252,7 @@ verify::RgbaCanvas histogramPng(const std::array<uint64_t, mta::kRatioBins>& his
   return c;
 }
 
-void runTexel(PathRunArgs a) {
+nlohmann::json runTexelImpl(PathRunArgs a) {
   fs::create_directories(a.out);
   std::string treePath = a.input;
   if (fs::path(a.input).extension() != ".mta") {
@@ -313,10 +313,14 @@ void runTexel(PathRunArgs a) {
   nlohmann::json doc = {{"options", optionsJson(a, o, path)}, {"summary", summary}, {"frames", rows}};
   writeTextFile((fs::path(a.out) / "texel.json").string(), doc.dump(1) + "\n");
   writeChartPng((fs::path(a.out) / "histogram.png").string(), histogramPng(hist, tau));
-  std::printf("%s\n", summary.dump(2).c_str());
+  return summary;
 }
 
 }  // namespace
+
+nlohmann::json runMtaRender(const PathRunArgs& a) { return runRenderImpl(a); }
+nlohmann::json runMtaRuns(const PathRunArgs& a, int tolerance) { return runRunsImpl(a, tolerance); }
+nlohmann::json runTexel(const PathRunArgs& a) { return runTexelImpl(a); }
 
 void addMtaRenderCommands(CLI::App& app, CLI::App* mtaCmd) {
   auto ra = std::make_shared<PathRunArgs>();
@@ -325,7 +329,7 @@ void addMtaRenderCommands(CLI::App& app, CLI::App* mtaCmd) {
                 "(texture_binds, draw_calls, bytes_resident, ...) and plot.png; prints a summary");
   render->add_option("tree", ra->input, "Paging file (.mta)")->required();
   addPathRunOptions(render, *ra, true);
-  render->callback([ra] { runRender(*ra); });
+  render->callback([ra] { std::printf("%s\n", runMtaRender(*ra).dump(2).c_str()); });
 
   auto rr = std::make_shared<PathRunArgs>();
   auto tolerance = std::make_shared<int>(16);
@@ -338,7 +342,7 @@ void addMtaRenderCommands(CLI::App& app, CLI::App* mtaCmd) {
       ->capture_default_str();
   runs->callback([rr, tolerance] {
     if (*tolerance < 0 || *tolerance > 255) throw Error("--tolerance must be 0..255");
-    runRuns(*rr, *tolerance);
+    std::printf("%s\n", runMtaRuns(*rr, *tolerance).dump(2).c_str());
   });
 
   auto ta = std::make_shared<PathRunArgs>();
@@ -349,7 +353,7 @@ void addMtaRenderCommands(CLI::App& app, CLI::App* mtaCmd) {
   texel->add_option("input", ta->input, "Paging file (.mta), or a model (glTF, OBJ, ...) whose tree is built first into OUT/tree.mta")
       ->required();
   addPathRunOptions(texel, *ta, true);
-  texel->callback([ta] { runTexel(*ta); });
+  texel->callback([ta] { std::printf("%s\n", runTexel(*ta).dump(2).c_str()); });
 }
 
 }  // namespace tessera::cli

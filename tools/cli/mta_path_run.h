@@ -55,6 +55,11 @@ class Progress {
   double last_ = -1e9;
 };
 
+// The three commands (cmd_mta_render.cpp); each writes its files under a.out and returns its summary.
+nlohmann::json runMtaRender(const PathRunArgs& a);
+nlohmann::json runMtaRuns(const PathRunArgs& a, int tolerance);
+nlohmann::json runTexel(const PathRunArgs& a);
+
 // max, mean of a series.
 std::pair<double, double> maxMean(const std::vector<double>& v);
 
