@@ -20,6 +20,12 @@ void Primitive::quad(const Float3 (&p)[4], const Float2 (&t)[4]) {
   indices.insert(indices.end(), {b, b + 1, b + 2, b, b + 2, b + 3});
 }
 
+void Primitive::quad(const Float3 (&p)[4]) {
+  const uint32_t b = uint32_t(positions.size());
+  for (int k = 0; k < 4; ++k) positions.push_back(p[k]);
+  indices.insert(indices.end(), {b, b + 1, b + 2, b, b + 2, b + 3});
+}
+
 void Primitive::triangle(const Float3 (&p)[3], const Float2 (&t)[3]) {
   const uint32_t b = uint32_t(positions.size());
   for (int k = 0; k < 3; ++k) positions.push_back(p[k]), texcoords.push_back(t[k]);
@@ -89,6 +95,12 @@ void ground(Primitive& p, double x0, double z0, double x1, double z1, double y, 
   p.quad(v, t);
 }
 
+// The same without texcoords (an untextured primitive).
+void flat(Primitive& p, double x0, double z0, double x1, double z1, double y) {
+  const Float3 v[4] = {{f(x0), f(y), f(z1)}, {f(x1), f(y), f(z1)}, {f(x1), f(y), f(z0)}, {f(x0), f(y), f(z0)}};
+  p.quad(v);
+}
+
 uint32_t gridSide(uint32_t n) {
   uint32_t g = 1;
   while (uint64_t(g) * g < n) ++g;
@@ -103,20 +115,55 @@ Scene buildBerlin(uint32_t buildings, uint64_t seed, uint32_t textureSize) {
   s.buildings = buildings;
   Rng rng{mix(seed ^ 0xbe71u)};
   const uint32_t g = gridSide(buildings);
-  const double pitch = 40.0;  // 30 m lots, 10 m streets
+  // Lot pitch: the one free ratio of this layout, calibrated to the thesis' atlas tree. §4.7.1 gives
+  // the facades (10,000 x 512², matched exactly), d_min = D/72 and the result (1,773 nodes of 512²,
+  // i.e. ~46 k atlas texels per building over all levels), but not the extent of "a part of Berlin".
+  // At d_min = D/72 the atlas texels a building needs scale as (facade extent / D)², and D grows as
+  // pitch * sqrt(N): the tree size depends on facade size / pitch and hardly on N (the 512² facades
+  // never limit it: a 12 m repeat needs ~52 atlas texels at N = 10,000). Tree nodes with the builder's
+  // defaults (A = 512, 1024 px, 60°, τ = 1, border 8), N = 10,000 / N = 1,000:
+  //   pitch  40 m: 47.1 k / 7.9 k (a dense inner-city grid; ~37 GB of atlases at N = 10,000)
+  //          60 m:  9.9 k / 5.6 k     80 m: 5.3 k / 3.7 k     100 m: 2.2 k / 2.6 k
+  //         105 m:  1.74 k / 1.34 k   110 m: 1.5 k / 1.34 k   120 m: 1.37 k / 1.33 k
+  // (N = 1,000 below ~105 m: walls are critical at D/72; they are split, or below ~95 m d_min is raised
+  // to ~59 m.) 105 m gives the
+  // thesis' tree size, so its model had ~7x the area per building of a dense 40 m grid (sparser
+  // buildings, or terrain beyond them widening D; the text does not say). We spread the lots, which
+  // keeps every building's surroundings alike.
+  const double pitch = 105.0, street = 10.0, lot = pitch - street;
   s.nodes.push_back(Node{.name = "berlin"});
   s.roots.push_back(0);
-  // Ground: one street texture per 40 m block, the last texture.
+  // Ground and roofs are untextured (thesis §4.7.1: "roofs and terrain are neither considered" in the
+  // atlas-tree workload; they carried an aerial image). A textured ground quad repeating a street
+  // texture g x g times was critical and split into ~9,500 atlas-filling triangles (N = 1,000).
+  // Colour materials follow the N facade materials: lot, asphalt, then kRoofColours roof colours. Per
+  // grid cell one lot quad and two street strips (on the +x and +z sides), so every ground triangle
+  // stays as local as a building: a city-sized triangle would give the tree node holding it (and every
+  // ancestor) the bounds of the whole city.
+  s.colours = {{"lot", {0.16, 0.19, 0.11}},
+               {"asphalt", {0.06, 0.06, 0.07}},
+               {"roof_tiles", {0.30, 0.07, 0.04}},
+               {"roof_slate", {0.10, 0.10, 0.11}},
+               {"roof_copper", {0.12, 0.25, 0.18}}};
+  constexpr uint32_t kRoofColours = 3;
+  const uint32_t roofMaterial = buildings + 2;
   Node groundNode{.name = "ground"};
-  const double extent = g * pitch;
-  ground(prim(groundNode, buildings), -pitch / 4, -pitch / 4, extent - pitch / 4, extent - pitch / 4, 0.0, g, g);
+  groundNode.primitives = {Primitive{.material = buildings}, Primitive{.material = buildings + 1}};
+  Primitive &lots = groundNode.primitives[0], &streets = groundNode.primitives[1];
+  for (uint32_t j = 0; j < g; ++j)
+    for (uint32_t i = 0; i < g; ++i) {
+      const double x = i * pitch, z = j * pitch;
+      flat(lots, x, z, x + lot, z + lot, 0.0);
+      flat(streets, x + lot, z, x + pitch, z + pitch, 0.0);
+      flat(streets, x, z + lot, x + lot, z + pitch, 0.0);
+    }
   for (uint32_t i = 0; i < buildings; ++i) {
     // Walls are multiples of the 3 m window module, so each facade holds whole window columns.
     const int wx = rng.range(4, 9), wz = rng.range(4, 9), floors = rng.range(2, 12);
     const double hx = wx * 1.5, hz = wz * 1.5, h = floors * 3.0;
     const double jx = (rng.range(0, 8) - 4) * 0.5, jz = (rng.range(0, 8) - 4) * 0.5;
     Node b{.name = "building_" + std::to_string(i)};
-    b.translation = {(i % g) * pitch + pitch * 0.375 + jx, 0.0, (i / g) * pitch + pitch * 0.375 + jz};
+    b.translation = {(i % g) * pitch + lot / 2 + jx, 0.0, (i / g) * pitch + lot / 2 + jz};  // mid-lot
     Primitive& p = prim(b, i);
     // Counter-clockwise from +Y: (-x,+z) -> (+x,+z) -> (+x,-z) -> (-x,-z). u continues around the
     // building: one repeat per 12 m; v: one repeat per 4 floors (12 m).
@@ -128,13 +175,16 @@ Scene buildBerlin(uint32_t buildings, uint64_t seed, uint32_t textureSize) {
       u += len / 12.0;
     }
     const Float3 roof[4] = {{f(-hx), f(h), f(hz)}, {f(hx), f(h), f(hz)}, {f(hx), f(h), f(-hz)}, {f(-hx), f(h), f(-hz)}};
-    const Float2 rt[4] = {{0, 0.0625f}, {0.0625f, 0.0625f}, {0.0625f, 0}, {0, 0}};  // a 1/16 x 1/16 region
-    p.quad(roof, rt);
+    // Untextured, like the ground (the thesis' roofs carried an aerial image outside the atlas tree).
+    // A roof mapping a small region of the facade texture needs far more texels per repeat than the
+    // walls (512, the cap, against ~135), and a node stores each texture at one resolution: the whole
+    // facade would be stored at the roof's magnification (40 m lots, N = 1000: 15.0 k nodes instead
+    // of 7.9 k).
+    prim(b, roofMaterial + uint32_t(mix(seed ^ (uint64_t(i) << 20) ^ 0x7f0fu) % kRoofColours)).quad(roof);
     s.nodes[0].children.push_back(uint32_t(s.nodes.size()));
     s.nodes.push_back(std::move(b));
     s.textures.push_back(TexSpec{TexKind::BerlinFacade, textureSize, textureSize, mix(seed * 0x9e37u + i), i + 1});
   }
-  s.textures.push_back(TexSpec{TexKind::Street, textureSize, textureSize, mix(seed ^ 0x57ee7u), 0});
   s.nodes[0].children.push_back(uint32_t(s.nodes.size()));
   s.nodes.push_back(std::move(groundNode));
   return s;

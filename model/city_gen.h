@@ -2,12 +2,14 @@
 // as real glTF 2.0 files with their textures, for the atlas tree and its benchmarks.
 //
 // Implements:
-// - "berlin" (§4.7.1): N block buildings on a grid of streets, each with its own facade texture
-//   (textureSize², RGB, windows and floors, a plaque with the building's number, as the thesis
-//   labelled its 10,000 textures) repeated around the facade: u runs continuously around the
-//   building, one repeat per 12 m (4 window columns), v one repeat per 4 floors. Roofs map a
-//   small region (1/16 x 1/16) of the same texture. A ground plane has its own street texture
-//   repeated once per block. 10,000 buildings at 512² are 7.32 GiB of raw texels, the thesis' number.
+// - "berlin" (§4.7.1): N block buildings on a grid of 105 m lots and 10 m streets, each with its own
+//   facade texture (textureSize², RGB, windows and floors, a plaque with the building's number, as
+//   the thesis labelled its 10,000 textures) repeated around the facade: u runs continuously around
+//   the building, one repeat per 12 m (4 window columns), v one repeat per 4 floors. Roofs and ground
+//   are untextured (base colour materials only), as the thesis kept "roofs and terrain" out of the
+//   atlas tree; the facade textures are the whole textured workload. The lot pitch is calibrated so
+//   that N = 10,000 at d_min = D/72 gives a tree of the thesis' size (city_gen.cpp). 10,000
+//   buildings at 512² are 7.32 GiB of raw texels, the thesis' number.
 // - "chemnitz" (§4.7.2): irregular detail. Per building: an extruded random star-shaped footprint
 //   with walls split into floors and ~1.1 m segments (3 facade textures), a pyramid roof, small boxes
 //   (balconies, chimneys), and sometimes a fence (RGBA, alpha MASK), trees (RGBA crossed quads,
@@ -19,7 +21,8 @@
 // temporary name and renamed. The bytes depend only on the options (no clock, no thread count):
 // geometry uses IEEE arithmetic and detSin/detCos, textures integer arithmetic from per-texture seeds,
 // and are encoded in parallel (TBB) into their own files.
-// Does not implement: terrain, landmarks, aerial roof images, or loading (loadModel() reads the result).
+// Does not implement: terrain relief, landmarks, aerial roof images, or loading (loadModel() reads the
+// result).
 #pragma once
 
 #include <cstdint>

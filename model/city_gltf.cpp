@@ -149,21 +149,27 @@ void writeScene(const Scene& scene, const CityOptions& o, CitySummary& s) {
                              {"type", "VEC3"},
                              {"min", {lo.x, lo.y, lo.z}},
                              {"max", {hi.x, hi.y, hi.z}}});
-        accessors.push_back({{"bufferView", 1},
-                             {"byteOffset", uv.size()},
-                             {"componentType", 5126},
-                             {"count", p.texcoords.size()},
-                             {"type", "VEC2"}});
+        const bool textured = !p.texcoords.empty();
+        if (textured != (p.material < nt) || (textured && p.texcoords.size() != p.positions.size()))
+          throw Error(n.name + ": texcoords do not match material " + std::to_string(p.material) +
+                      " (internal error in the city generator)");
+        nlohmann::json attributes = {{"POSITION", a}};
+        if (textured) {
+          attributes["TEXCOORD_0"] = accessors.size();
+          accessors.push_back({{"bufferView", 1},
+                               {"byteOffset", uv.size()},
+                               {"componentType", 5126},
+                               {"count", p.texcoords.size()},
+                               {"type", "VEC2"}});
+        }
+        const size_t ia = accessors.size();
         accessors.push_back({{"bufferView", 2},
                              {"byteOffset", idx.size()},
                              {"componentType", 5125},
                              {"count", p.indices.size()},
                              {"type", "SCALAR"}});
         append(pos, p.positions), append(uv, p.texcoords), append(idx, p.indices);
-        prims.push_back({{"attributes", {{"POSITION", a}, {"TEXCOORD_0", a + 1}}},
-                         {"indices", a + 2},
-                         {"material", p.material},
-                         {"mode", 4}});
+        prims.push_back({{"attributes", attributes}, {"indices", ia}, {"material", p.material}, {"mode", 4}});
         s.triangles += p.indices.size() / 3;
         s.vertices += p.positions.size();
         ++s.primitives;
@@ -187,6 +193,12 @@ void writeScene(const Scene& scene, const CityOptions& o, CitySummary& s) {
     textures.push_back({{"source", i}, {"sampler", 0}});
     images.push_back({{"uri", names[i]}});
   }
+  for (const ColourMaterial& c : scene.colours)  // untextured: a base colour factor only
+    materials.push_back({{"name", c.name},
+                         {"pbrMetallicRoughness",
+                          {{"baseColorFactor", {c.rgb[0], c.rgb[1], c.rgb[2], 1.0}},
+                           {"metallicFactor", 0.0},
+                           {"roughnessFactor", 1.0}}}});
   const std::string binName = scene.name + ".bin";
   const size_t binSize = pos.size() + uv.size() + idx.size();
   nlohmann::json root = {

@@ -12,7 +12,7 @@
 
 namespace tessera::model::city {
 
-enum class TexKind : uint8_t { BerlinFacade, Street, Facade, Roof, Detail, Pavement, Fence, Tree, Glass };
+enum class TexKind : uint8_t { BerlinFacade, Facade, Roof, Detail, Pavement, Fence, Tree, Glass };
 
 struct TexSpec {
   TexKind kind = TexKind::Facade;
@@ -25,13 +25,24 @@ struct TexSpec {
 // Pixels of one texture: rows top first (file order), 3 or 4 channels. Pure function of the spec.
 std::vector<uint8_t> renderTexture(const TexSpec& spec);
 
+// An untextured material: a base colour factor only (no texture, no texcoords). The atlas tree
+// places such triangles without atlas area (mta::sceneFromModel maps them to texture -1).
+struct ColourMaterial {
+  std::string name;
+  std::array<double, 3> rgb{1, 1, 1};  // linear baseColorFactor, alpha 1
+};
+
 struct Primitive {
-  uint32_t material = 0;  // == texture index (one material per texture)
+  // < Scene::textures.size(): that texture's material (one material per texture);
+  // else Scene::colours[material - textures.size()].
+  uint32_t material = 0;
   std::vector<Float3> positions;
-  std::vector<Float2> texcoords;
+  std::vector<Float2> texcoords;  // one per position, or empty (untextured: no TEXCOORD_0 is written)
   std::vector<uint32_t> indices;
   // Appends the quad p0 p1 p2 p3 (counter-clockwise seen from the front) with its corner texcoords.
   void quad(const Float3 (&p)[4], const Float2 (&t)[4]);
+  // The same without texcoords, for untextured primitives only.
+  void quad(const Float3 (&p)[4]);
   void triangle(const Float3 (&p)[3], const Float2 (&t)[3]);
 };
 
@@ -46,6 +57,7 @@ struct Node {
 struct Scene {
   std::string name;  // "berlin" / "chemnitz": the file stem
   std::vector<TexSpec> textures;
+  std::vector<ColourMaterial> colours;  // materials textures.size() .. textures.size() + colours.size() - 1
   std::vector<Node> nodes;
   std::vector<uint32_t> roots;
   uint32_t buildings = 0;

@@ -94,23 +94,6 @@ void berlinFacade(Canvas& c, const TexSpec& t) {
   drawNumber(c, px, py, s, t.label, Rgba{20, 30, 120, 255});
 }
 
-// One 40 m block of street: light pavement lot, dark asphalt streets on two sides, dashed lines.
-void street(Canvas& c, const TexSpec& t) {
-  const int64_t W = c.w, H = c.h, lot = W * 3 / 4, unit = std::max<int64_t>(W / 64, 1);
-  for (int64_t y = 0; y < H; ++y)
-    for (int64_t x = 0; x < W; ++x) {
-      const bool road = x >= lot || y >= lot;
-      const Rgba base = road ? Rgba{70, 70, 75, 255} : Rgba{170, 168, 160, 255};
-      c.set(uint32_t(x), uint32_t(y),
-            shade(base, int(hash(t.seed, uint64_t(x / (2 * unit)), uint64_t(y / (2 * unit))) % 9) - 4));
-    }
-  const int64_t mid = lot + (W - lot) / 2;
-  for (int64_t k = 0; k < W; k += 4 * unit) {
-    c.rect(mid - unit / 2, k, mid + unit / 2 + 1, k + 2 * unit, Rgba{235, 235, 225, 255});
-    c.rect(k, mid - unit / 2, k + 2 * unit, mid + unit / 2 + 1, Rgba{235, 235, 225, 255});
-  }
-}
-
 // Chemnitz facade: one floor high, 1..3 windows across, plaster colour and frames per texture.
 void facade(Canvas& c, const TexSpec& t) {
   const int64_t W = c.w, H = c.h, u = std::max<int64_t>(std::min(W, H) / 64, 1);
@@ -205,9 +188,6 @@ std::vector<uint8_t> renderTexture(const TexSpec& t) {
   switch (t.kind) {
     case TexKind::BerlinFacade:
       berlinFacade(c, t);
-      break;
-    case TexKind::Street:
-      street(c, t);
       break;
     case TexKind::Facade:
       facade(c, t);

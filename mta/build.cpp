@@ -36,7 +36,20 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Decoded images with their mip chains, least recently used evicted beyond the budget.
+// Bytes of the RGBA8 mip chain makeMipImage builds for a w x h image (MipImage::bytes() once decoded).
+uint64_t mipChainBytes(uint32_t w, uint32_t h) {
+  TextureDesc d;
+  d.kind = TextureKind::Tex2D;
+  d.format = Format::RGBA8;
+  d.width = w, d.height = h, d.layers = 1, d.levels = fullMipCount(w, h);
+  uint64_t b = 0;
+  for (uint32_t l = 0; l < d.levels; ++l) b += levelBytes(d, l);
+  return b;
+}
+
+// Decoded images with their mip chains, least recently used evicted beyond the budget. Evicts before it
+// decodes (sizes come from the headers), so the decoded images never exceed the budget, not even while
+// a batch is loaded, as long as one batch's own images fit (checked before the first batch).
 struct ImageCache {
   const Scene& scene;
   uint64_t budget;
@@ -46,8 +59,23 @@ struct ImageCache {
   // Makes every image of `need` resident (decoding the missing ones in parallel) and evicts others.
   void require(const std::vector<uint32_t>& need) {
     std::vector<uint32_t> missing;
-    for (uint32_t i : need)
-      if (!items.count(i)) missing.push_back(i);
+    uint64_t incoming = 0;
+    ++tick;
+    for (uint32_t i : need) {
+      auto it = items.find(i);
+      if (it == items.end())
+        missing.push_back(i), incoming += mipChainBytes(scene.images[i].width, scene.images[i].height);
+      else
+        it->second.second = tick;
+    }
+    while (bytes + incoming > budget) {  // evict the least recently used image not needed now (ties: lowest index)
+      auto victim = items.end();
+      for (auto it = items.begin(); it != items.end(); ++it)
+        if (it->second.second != tick && (victim == items.end() || it->second.second < victim->second.second)) victim = it;
+      if (victim == items.end()) break;
+      bytes -= victim->second.first->bytes();
+      items.erase(victim);
+    }
     std::vector<std::shared_ptr<const MipImage>> loaded(missing.size());
     tbb::parallel_for(size_t(0), missing.size(), [&](size_t k) {
       const uint32_t i = missing[k];
@@ -58,21 +86,11 @@ struct ImageCache {
                     std::to_string(img.height) + " but its header said " + std::to_string(si.width) + "x" + std::to_string(si.height));
       loaded[k] = std::make_shared<const MipImage>(makeMipImage(img));
     });
-    ++tick;
     for (size_t k = 0; k < missing.size(); ++k) {
       bytes += loaded[k]->bytes();
       items[missing[k]] = {loaded[k], tick};
     }
     decoded += missing.size();
-    for (uint32_t i : need) items[i].second = tick;
-    while (bytes > budget) {  // evict the least recently used image not needed now (ties: lowest index)
-      auto victim = items.end();
-      for (auto it = items.begin(); it != items.end(); ++it)
-        if (it->second.second != tick && (victim == items.end() || it->second.second < victim->second.second)) victim = it;
-      if (victim == items.end()) break;
-      bytes -= victim->second.first->bytes();
-      items.erase(victim);
-    }
   }
   const MipImage& get(uint32_t i) const { return *items.at(i).first; }
 };
@@ -172,13 +190,19 @@ BuildReport buildMta(const Scene& scene, const BuildParams& params, const std::s
   std::optional<tbb::global_control> threads;
   if (params.threads) threads.emplace(tbb::global_control::max_allowed_parallelism, params.threads);
   BuildReport rep;
+  const ImageCache* cacheForMessages = nullptr;
   auto checkMemory = [&](const char* where) {
     const uint64_t rss = residentBytes();
     rep.peakResidentBytes = std::max(rep.peakResidentBytes, rss);
-    if (params.memoryLimit && rss > params.memoryLimit)
+    if (params.memoryLimit && rss > params.memoryLimit) {
+      std::string cache;
+      if (cacheForMessages)
+        cache = ", decoded images " + std::to_string(cacheForMessages->bytes >> 20) + " MiB of a budget of " +
+                std::to_string(cacheForMessages->budget >> 20) + " MiB";
       throw Error("mta: resident memory " + std::to_string(rss >> 20) + " MiB exceeds --memory-limit " +
-                  std::to_string(params.memoryLimit >> 20) + " MiB " + where +
-                  " (the scene's geometry and the open batch must fit; raise the limit)");
+                  std::to_string(params.memoryLimit >> 20) + " MiB " + where + cache +
+                  " (the scene's geometry, the tree and the open batch must fit; raise the limit)");
+    }
   };
   const Geometry& in = scene.geometry;
   if (in.triangleCount() == 0) throw Error("mta: scene '" + scene.name + "' has no triangles");
@@ -242,11 +266,58 @@ BuildReport buildMta(const Scene& scene, const BuildParams& params, const std::s
   }
   checkMemory("after building the tree structure");
 
-  PagingFileWriter writer(outPath);
+  // Memory for the atlas phase, bounded by construction: what is resident now (geometry, tree, the
+  // caller's model) + the working set below + the image cache, whose budget is what the limit leaves
+  // (at most limit / 8, clamped to 64 MiB .. 1 GiB as before), with a quarter of the rest kept as slack
+  // for the allocator. The VmRSS checks stay as a safety net.
+  constexpr size_t kBatch = 8;  // leaves per batch; fixed: the bytes never depend on it, only memory and speed do
   const uint64_t atlasBytes4 = uint64_t(A) * A * 4;
+  uint32_t maxDepth = 0;
+  uint64_t largestImage = 0, largestBatch = 0;  // RGBA8 bytes of one decoded image; mip-chain bytes of one batch
+  for (const Tree& tree : meta.trees) {
+    maxDepth = std::max(maxDepth, tree.depth());
+    std::vector<uint32_t> leaves;
+    for (uint32_t i = 0; i < tree.nodes.size(); ++i)
+      if (tree.nodes[i].leaf()) leaves.push_back(i);
+    for (size_t b0 = 0; b0 < leaves.size(); b0 += kBatch) {
+      std::set<uint32_t> imgs;
+      for (size_t k = b0; k < std::min(leaves.size(), b0 + kBatch); ++k)
+        for (uint32_t j = 0; j < tree.nodes[leaves[k]].imageCount; ++j) imgs.insert(tree.leafImages[tree.nodes[leaves[k]].imageFirst + j]);
+      uint64_t b = 0;
+      for (uint32_t i : imgs) {
+        b += mipChainBytes(scene.images[i].width, scene.images[i].height);
+        largestImage = std::max(largestImage, uint64_t(scene.images[i].width) * scene.images[i].height * 4);
+      }
+      largestBatch = std::max(largestBatch, b);
+    }
+  }
+  const uint64_t threadCount = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+  // Rendered batch + open inner atlases (one per level, per layer) + the originals block + per decoding
+  // thread the decoded image, its mip chain under construction and the decoder's own buffer.
+  const uint64_t working = (kBatch + maxDepth) * layers * atlasBytes4 + atlasBytes4 + threadCount * 4 * largestImage;
+  const uint64_t inUse = residentBytes();
+  uint64_t cacheBudget = 1ull << 30;
+  if (params.memoryLimit) {
+    const uint64_t headroom = params.memoryLimit > inUse + working ? (params.memoryLimit - inUse - working) / 4 * 3 : 0;
+    cacheBudget = std::min(std::clamp<uint64_t>(params.memoryLimit / 8, 64ull << 20, 1ull << 30), headroom);
+    if (largestBatch > cacheBudget) {
+      if (largestBatch > headroom)
+        throw Error("mta: --memory-limit " + std::to_string(params.memoryLimit >> 20) + " MiB is too small: " +
+                    std::to_string(inUse >> 20) + " MiB are in use after building the tree structure, the atlas working set needs " +
+                    std::to_string(working >> 20) + " MiB and the images of one batch of " + std::to_string(kBatch) + " leaves " +
+                    std::to_string(largestBatch >> 20) + " MiB decoded (with a quarter of the rest as slack); raise the limit");
+      cacheBudget = largestBatch;
+    }
+  }
+  if (params.progress)
+    std::fprintf(stderr, "mta: %llu MiB in use, image cache budget %llu MiB, atlas working set %llu MiB, largest batch %llu MiB\n",
+                 (unsigned long long)(inUse >> 20), (unsigned long long)(cacheBudget >> 20), (unsigned long long)(working >> 20),
+                 (unsigned long long)(largestBatch >> 20));
+
+  PagingFileWriter writer(outPath);
   OriginalPacker packer{writer, meta, atlasBytes4, {}, {}, 0};
-  ImageCache cache{scene, std::clamp<uint64_t>(params.memoryLimit / 8, 64ull << 20, 1ull << 30), {}, 0, 0, 0};
-  if (!params.memoryLimit) cache.budget = 1ull << 30;
+  ImageCache cache{scene, cacheBudget, {}, 0, 0, 0};
+  cacheForMessages = &cache;
   std::vector<uint8_t> stored(scene.images.size(), 0);
   uint64_t leavesDone = 0;
   auto lastProgress = Clock::now();
@@ -279,7 +350,6 @@ BuildReport buildMta(const Scene& scene, const BuildParams& params, const std::s
     std::vector<uint32_t> leaves;
     for (uint32_t i = 0; i < tree.nodes.size(); ++i)
       if (tree.nodes[i].leaf()) leaves.push_back(i);
-    constexpr size_t kBatch = 8;  // fixed: the bytes never depend on it, only memory and speed do
     for (size_t b0 = 0; b0 < leaves.size(); b0 += kBatch) {
       const size_t b1 = std::min(leaves.size(), b0 + kBatch);
       std::vector<uint32_t> need, fresh;
@@ -294,6 +364,7 @@ BuildReport buildMta(const Scene& scene, const BuildParams& params, const std::s
       std::sort(need.begin(), need.end());
       need.erase(std::unique(need.begin(), need.end()), need.end());
       cache.require(need);
+      checkMemory("after decoding a batch's images");
       std::vector<std::vector<std::vector<uint8_t>>> atlases(b1 - b0, std::vector<std::vector<uint8_t>>(layers));
       tbb::parallel_for(size_t(0), (b1 - b0) * layers, [&](size_t k) {
         renderLeaf(scene, tree, leaves[b0 + k / layers], uint32_t(k % layers), cache, A, atlases[k / layers][k % layers]);

@@ -5,7 +5,12 @@
 // area is filled through the affine map of the first triangle of that texture in the leaf), inner
 // atlases by 2x downsampling (post-order, as children complete), original images stored once each in
 // blocks of about atlas size, all streamed into the paging file in a fixed order. Images are decoded
-// one batch of leaves at a time through a bounded LRU cache; VmRSS is checked against the limit.
+// one batch of leaves at a time through an LRU cache that evicts before it decodes. Memory is bounded
+// by construction: before the atlases, the cache budget is set to what BuildParams::memoryLimit leaves
+// after the resident set at that point and the atlas working set (batch, open inner atlases, decoding
+// buffers per thread), minus a quarter as allocator slack, at most limit / 8 (64 MiB .. 1 GiB); if
+// one batch's images do not fit that, the build stops with an Error before writing any atlas. VmRSS is
+// still checked after each phase, after decoding each batch and after each batch, as a safety net.
 // The bytes depend only on the scene and the parameters (never on threads or timing).
 // Does not implement: rendering / paging at runtime.
 #pragma once
@@ -20,7 +25,7 @@ namespace tessera::mta {
 
 struct BuildReport {
   double seconds = 0.0;          // wall time
-  uint64_t peakResidentBytes = 0;  // max VmRSS seen at the checkpoints
+  uint64_t peakResidentBytes = 0;  // max VmRSS seen at the checkpoints (see above)
   uint64_t fileBytes = 0;
   uint64_t imagesDecoded = 0;    // decodes incl. re-decodes after cache eviction
 };

@@ -30,28 +30,43 @@ CitySummary generate(CityPreset preset, uint32_t buildings, uint64_t seed, const
 
 bool isPowerOfTwo(uint32_t v) { return v && !(v & (v - 1)); }
 
-TEST(CityGenerator, SmallBerlinRoundTripsWithOneFacadeTexturePerBuilding) {
+TEST(CityGenerator, SmallBerlinRoundTripsWithOneFacadeTexturePerBuildingAndUntexturedRoofsAndGround) {
   ScratchDir dir;
   const CitySummary s = generate(CityPreset::Berlin, 6, 7, dir / "out");
-  EXPECT_EQ(s.textures, 7u);            // 6 facades + the street
-  EXPECT_EQ(s.triangles, 6u * 10 + 2);  // 4 walls + roof per building, 2 ground triangles
-  EXPECT_EQ(s.files.size(), 7u + 2);
+  // Facades are the whole textured workload (thesis §4.7.1: roofs and terrain are not in the atlas tree).
+  EXPECT_EQ(s.textures, 6u);
+  // 4 walls + roof per building; per cell of the 3 x 3 grid a lot and two street strips.
+  EXPECT_EQ(s.triangles, 6u * 10 + 9u * 6);
+  EXPECT_EQ(s.files.size(), 6u + 2);
   const Model m = loadModel(s.gltf);
-  EXPECT_EQ(m.textures.size(), 7u);
-  EXPECT_EQ(m.materials.size(), 7u);
-  EXPECT_EQ(m.meshes.size(), 7u);
+  EXPECT_EQ(m.textures.size(), 6u);
+  EXPECT_EQ(m.materials.size(), 6u + 5);  // facades, lot, asphalt, 3 roof colours
   EXPECT_EQ(m.triangleCount(), s.triangles);
-  std::vector<int> uses(7, 0);
+  EXPECT_EQ(m.meshes.size(), s.primitives);
+  std::vector<int> uses(6, 0);
+  size_t textured = 0, untexturedTriangles = 0;
   for (const Mesh& mesh : m.meshes) {
-    ++uses[size_t(m.materials[mesh.material].baseColorTexture)];
+    const Material& mat = m.materials[mesh.material];
+    if (mat.baseColorTexture < 0) {
+      EXPECT_TRUE(mesh.texcoords.empty()) << mesh.name;
+      EXPECT_LT(mat.baseColorFactor[0], 1.0f) << mesh.name << ": a base colour, not the default white";
+      for (size_t v = 0; v < mesh.positions.size(); ++v) EXPECT_GE(mesh.positions[v].y, 0.0f);
+      untexturedTriangles += mesh.triangleCount();
+      continue;
+    }
+    ++textured;
+    ++uses[size_t(mat.baseColorTexture)];
     ASSERT_EQ(mesh.texcoords.size(), mesh.positions.size());
+    EXPECT_EQ(mesh.triangleCount(), 8u) << mesh.name << ": the four walls";
     float maxU = 0;
     for (const Float2& t : mesh.texcoords) maxU = std::max(maxU, t.u);
     EXPECT_GT(maxU, 1.0f) << mesh.name << ": the facade texture repeats around the building";
   }
+  EXPECT_EQ(textured, 6u);
+  EXPECT_EQ(untexturedTriangles, 6u * 2 + 9u * 6);
   for (int u : uses) EXPECT_EQ(u, 1);
-  // Buildings stand on a grid: node translations are applied.
-  EXPECT_GT(m.bounds.max.x - m.bounds.min.x, 40.0f);
+  // Buildings stand on a grid of 105 m lots: node translations are applied.
+  EXPECT_GT(m.bounds.max.x - m.bounds.min.x, 105.0f);
   EXPECT_EQ(m.bounds.min.y, 0.0f);
   for (size_t i = 0; i < m.textures.size(); ++i) {
     const Image img = loadTexture(m, i);
