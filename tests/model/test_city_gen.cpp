@@ -75,7 +75,7 @@ TEST(CityGenerator, SmallBerlinRoundTripsWithOneFacadeTexturePerBuildingAndUntex
   }
 }
 
-TEST(CityGenerator, SmallChemnitzRoundTripsWithRgbaPartsOddSizesAndTwoThousandRepeatsOnOneTriangle) {
+TEST(CityGenerator, SmallChemnitzRoundTripsWithRgbaPartsOddSizesAndOverAHundredRepeatsOnOneTriangle) {
   ScratchDir dir;
   const CitySummary s = generate(CityPreset::Chemnitz, 8, 3, dir / "out");
   EXPECT_EQ(s.textures, 5u * 8);
@@ -89,9 +89,15 @@ TEST(CityGenerator, SmallChemnitzRoundTripsWithRgbaPartsOddSizesAndTwoThousandRe
     mask += mat.alphaMode == AlphaMode::Mask, blend += mat.alphaMode == AlphaMode::Blend;
   EXPECT_GT(mask, 0u);
   EXPECT_GT(blend, 0u);
-  // Some single triangle spans 2000 texture repeats.
+  // Some single triangle (a plaza's pavement) spans 34 / 0.3 = 113 texture repeats; the terrain is
+  // untextured.
   float maxSpan = 0;
-  for (const Mesh& mesh : m.meshes)
+  size_t untextured = 0;
+  for (const Mesh& mesh : m.meshes) {
+    if (mesh.texcoords.empty()) {
+      ++untextured;
+      continue;
+    }
     for (size_t t = 0; t < mesh.indices.size(); t += 3) {
       float lo = 1e30f, hi = -1e30f;
       for (int k = 0; k < 3; ++k)
@@ -99,7 +105,9 @@ TEST(CityGenerator, SmallChemnitzRoundTripsWithRgbaPartsOddSizesAndTwoThousandRe
         hi = std::max(hi, mesh.texcoords[mesh.indices[t + k]].u);
       maxSpan = std::max(maxSpan, hi - lo);
     }
-  EXPECT_EQ(maxSpan, 2000.0f);
+  }
+  EXPECT_GT(maxSpan, 113.0f);
+  EXPECT_EQ(untextured, 1u);
   // RGBA textures decode with alpha in use; some texture is not a power of two.
   bool anyAlpha = false, anyOdd = false;
   for (size_t i = 0; i < m.textures.size(); ++i) {
