@@ -68,6 +68,16 @@ RendererOptions options(uint64_t capacity, LoadBudget budget) {
   return o;
 }
 
+// Every ideal block is loaded before each frame is drawn (the guarantee's precondition).
+RendererOptions everythingResident() {
+  LoadBudget b;
+  b.kind = LoadBudget::Kind::Blocks;
+  b.perFrame = UINT64_MAX;
+  RendererOptions o = options(uint64_t(1) << 32, b);
+  o.residency.maxQueue = UINT32_MAX;
+  return o;
+}
+
 uint64_t atlasBytes() {
   const MtaMeta& m = fixture().tree->meta();
   return uint64_t(m.params.atlasSize) * m.params.atlasSize * 3;
@@ -118,6 +128,24 @@ TEST(Residency, BlocksAreLoadedInPriorityOrderWithinEachFrame) {
   }
 }
 
+TEST(Residency, TheBackgroundLoaderKeepsTheSameInvariants) {
+  // The wall-clock mode is not reproducible, but capacity and root residency hold all the same.
+  const PagingFile& f = *fixture().tree;
+  LoadBudget b;
+  b.kind = LoadBudget::Kind::Time;
+  b.slotMs = 2.0;
+  TreeRenderer r(f, options(atlasBytes() * 7, b));
+  const uint32_t root = f.meta().trees[0].atlasBlocks[0];
+  uint64_t loaded = 0;
+  for (const Camera& c : path()) {
+    const FrameResult fr = r.renderFrame(c);
+    EXPECT_LE(fr.bytesResident, fr.capacityBytes);
+    EXPECT_TRUE(r.residency()->resident(root));
+    loaded += fr.residency.blocksLoaded;
+  }
+  EXPECT_GT(loaded, 0u);
+}
+
 TEST(Residency, BudgetParsingNamesTheOptionAndTheUnit) {
   EXPECT_EQ(LoadBudget::parse("8MiB", "--budget").perFrame, 8u << 20);
   EXPECT_EQ(LoadBudget::parse("4blocks", "--budget").kind, LoadBudget::Kind::Blocks);
@@ -153,11 +181,7 @@ TEST(TreeRenderer, WithOnlyTheRootInMemoryEverythingIsDrawnWithTheRootAtlas) {
 
 TEST(TreeRenderer, WithAnUnlimitedBudgetNoNeededBlockIsMissing) {
   const PagingFile& f = *fixture().tree;
-  LoadBudget b;
-  b.kind = LoadBudget::Kind::Blocks;
-  b.perFrame = UINT64_MAX;
-  RendererOptions o = options(uint64_t(1) << 32, b);
-  o.residency.maxQueue = UINT32_MAX;
+  const RendererOptions o = everythingResident();
   TreeRenderer r(f, o);
   bool sawOriginals = false, sawInner = false;
   for (const Camera& c : path()) {
@@ -210,11 +234,7 @@ TEST(TreeRenderer, DeterministicBudgetsGiveTheSameFramesForAnyThreadCount) {
 
 TEST(TexelAnalysis, NoAtlasPixelMagnifiesBeyondTauWhenEveryNeededBlockIsResident) {
   const PagingFile& f = *fixture().tree;
-  LoadBudget b;
-  b.kind = LoadBudget::Kind::Blocks;
-  b.perFrame = UINT64_MAX;
-  RendererOptions o = options(uint64_t(1) << 32, b);
-  o.residency.maxQueue = UINT32_MAX;
+  const RendererOptions o = everythingResident();
   TreeRenderer r(f, o);
   uint64_t atlasPixels = 0;
   for (const Camera& c : path()) {
