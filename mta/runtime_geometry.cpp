@@ -21,6 +21,11 @@ RuntimeGeometry buildRuntimeGeometry(const MtaMeta& meta) {
     RuntimeTree rt;
     rt.firstTriangle = base;
     rt.leaf.resize(t.nodes.size());
+    uint32_t textured = 0;
+    for (int32_t tex : layer0.texture) textured += tex >= 0 ? 1 : 0;
+    rt.firstUntextured = base + textured;
+    uint32_t nextTextured = base, nextUntextured = rt.firstUntextured;
+    // Pre-order node indices visit the leaves depth first, as the file's ranges are laid out.
     for (size_t n = 0; n < t.nodes.size(); ++n) {
       const Node& node = t.nodes[n];
       if (!node.leaf()) continue;
@@ -33,15 +38,19 @@ RuntimeGeometry buildRuntimeGeometry(const MtaMeta& meta) {
       });
       LeafRuns& lr = rt.leaf[n];
       lr.runFirst = uint32_t(g.runs.size());
-      lr.texturedFirst = base + node.firstTriangle;
+      lr.texturedFirst = nextTextured;
+      lr.untexturedFirst = nextUntextured;
       for (uint32_t k = 0; k < node.triangleCount; ++k) {
         const uint32_t src = order[k];
-        const uint32_t dst = base + node.firstTriangle + k;
         const int32_t tex = layer0.texture[src];
-        if (g.runs.size() == lr.runFirst || g.runs.back().texture != tex)
-          g.runs.push_back(TextureRun{tex, dst, 0});
-        ++g.runs.back().count;
-        if (tex >= 0) ++lr.texturedCount; else ++lr.untexturedCount;
+        const uint32_t dst = tex >= 0 ? nextTextured++ : nextUntextured++;
+        if (tex >= 0) {
+          if (g.runs.size() == lr.runFirst || g.runs.back().texture != tex) g.runs.push_back(TextureRun{tex, dst, 0});
+          ++g.runs.back().count;
+          ++lr.texturedCount;
+        } else {
+          ++lr.untexturedCount;
+        }
         for (int v = 0; v < 3; ++v) {
           RuntimeVertex& rv = g.vertices[size_t(dst) * 3 + v];
           const Float3& p = t.geometry.positions[size_t(src) * 3 + v];

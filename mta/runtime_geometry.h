@@ -1,10 +1,11 @@
 // The atlas tree's geometry as the renderer draws it: one interleaved vertex array for every tree of a
 // paging file, and per leaf the runs of triangles that share an original texture.
 //
-// Implements: a permutation inside each leaf (triangles sorted by original texture, untextured ones
-// last) so that a leaf drawn with its original textures needs one draw per texture and a node drawn
-// with its atlas needs one draw per run of adjacent leaves (thesis §4.8.1: node ranges stay
-// contiguous because the permutation never leaves a leaf); the vertex records.
+// Implements: per tree two regions in leaf (depth-first) order, the textured triangles of every leaf,
+// then the untextured ones of every leaf, each leaf's textured triangles sorted by original texture.
+// So a node drawn with its atlas is one draw over its leaves' textured triangles (thesis §4.8.1: every
+// node stays one contiguous range, now in each region), its untextured triangles are one more draw,
+// and a leaf drawn with its original textures needs one draw per texture; the vertex records.
 // Does not implement: deciding what to draw (traversal.h), recording (frame_recorder.h).
 //
 // Only layer 0 is drawn (the base colour); further layers (§5.1.3) share the parameterization and
@@ -34,13 +35,14 @@ struct TextureRun {
 };
 
 struct LeafRuns {
-  uint32_t texturedFirst = 0, texturedCount = 0;  // the leaf's textured triangles (all runs but the last -1 run)
-  uint32_t runFirst = 0, runCount = 0;            // into RuntimeGeometry::runs
-  uint32_t untexturedCount = 0;                   // follow the textured triangles
+  uint32_t texturedFirst = 0, texturedCount = 0;      // the leaf's textured triangles, sorted by texture
+  uint32_t runFirst = 0, runCount = 0;                // into RuntimeGeometry::runs (textured runs only)
+  uint32_t untexturedFirst = 0, untexturedCount = 0;  // in the tree's untextured region
 };
 
 struct RuntimeTree {
   uint32_t firstTriangle = 0;  // of this tree in the global order (trees follow each other)
+  uint32_t firstUntextured = 0;  // start of the tree's untextured region
   std::vector<LeafRuns> leaf;  // per node (inner nodes: empty record)
 };
 

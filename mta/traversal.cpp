@@ -168,17 +168,16 @@ struct Planner {
     const LeafRuns& lr = g.trees[tree].leaf[leaf];
     ++plan.leavesDrawn;
     plan.trianglesDrawn += lr.texturedCount + lr.untexturedCount;
-    if (src == DrawSource::White) {
-      append(plan.draws, {DrawSource::White, uint8_t(tree), 0, -1, lr.texturedFirst, lr.texturedCount + lr.untexturedCount});
-      return;
-    }
-    if (src == DrawSource::Atlas) append(plan.draws, {DrawSource::Atlas, uint8_t(tree), atlasNode, -1, lr.texturedFirst, lr.texturedCount});
+    if (src == DrawSource::White)
+      append(plan.draws, {DrawSource::White, uint8_t(tree), 0, -1, lr.texturedFirst, lr.texturedCount});
+    else if (src == DrawSource::Atlas)
+      append(plan.draws, {DrawSource::Atlas, uint8_t(tree), atlasNode, -1, lr.texturedFirst, lr.texturedCount});
     else
       for (uint32_t r = 0; r < lr.runCount; ++r) {
         const TextureRun& run = g.runs[lr.runFirst + r];
-        if (run.texture >= 0) append(plan.draws, {DrawSource::Original, uint8_t(tree), leaf, run.texture, run.first, run.count});
+        append(plan.draws, {DrawSource::Original, uint8_t(tree), leaf, run.texture, run.first, run.count});
       }
-    append(white, {DrawSource::White, uint8_t(tree), 0, -1, lr.texturedFirst + lr.texturedCount, lr.untexturedCount});
+    append(white, {DrawSource::White, uint8_t(tree), 0, -1, lr.untexturedFirst, lr.untexturedCount});
   }
 
   // renderNode (Figure 26): the node's atlas for every visible leaf below it.
