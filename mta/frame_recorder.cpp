@@ -206,16 +206,23 @@ RecordedFrame recordFrame(const MtaMeta& meta, const RuntimeGeometry& geometry, 
     c.levels = {{255, 255, 255, 255}};
     return c;
   }();
+  // Resources first: every texture the frame binds is created and uploaded before the first draw, as a
+  // renderer holding its textures would have them (and uploads between draws would split the oracle's
+  // tile work into batches, which made the comparison runs' timings depend on upload order).
+  struct Binding {
+    ResourceId texture = kNone, sampler = kNone;
+    float scale = 1.0f;
+  };
+  std::vector<Binding> bind(plan.draws.size());
   for (size_t i = 0; i < plan.draws.size(); ++i) {
     const PlannedDraw& d = plan.draws[i];
     const MipChain* chain = nullptr;
     uint64_t key = 0;
     Wrap ws = Wrap::Repeat, wt = Wrap::Repeat;
-    float scale = 1.0f;
     if (d.source == DrawSource::Atlas) {
       chain = &textures.atlas(d.tree, d.node);
       key = (uint64_t(1) << 62) | (uint64_t(d.tree) << 32) | d.node;
-      scale = meta.trees[d.tree].nodes[d.node].textureScale();
+      bind[i].scale = meta.trees[d.tree].nodes[d.node].textureScale();
     } else if (d.source == DrawSource::Original) {
       const SceneTexture& st = meta.textures[uint32_t(d.texture)];
       chain = &textures.image(st.image);
@@ -228,21 +235,25 @@ RecordedFrame recordFrame(const MtaMeta& meta, const RuntimeGeometry& geometry, 
     }
     auto [it, fresh] = texIds.emplace(key, kNone);
     if (fresh) it->second = upload(cl, *chain);
+    bind[i].texture = it->second;
+    bind[i].sampler = sampler(ws, wt);
+    f.drawTexture[i] = BoundTexture{chain->width, chain->height, uint32_t(chain->levels.size()), double(bind[i].scale)};
+  }
+  for (size_t i = 0; i < plan.draws.size(); ++i) {
+    const PlannedDraw& d = plan.draws[i];
     const int wantLayout = d.source == DrawSource::Atlas ? 1 : 0;
     if (wantLayout != layoutKind) {
       cl.setVertexLayout(layout(wantLayout == 1, false));
       layoutKind = wantLayout;
     }
-    if (scale != matrixScale) {
-      setTextureMatrix(cl, scale);
-      matrixScale = scale;
+    if (bind[i].scale != matrixScale) {
+      setTextureMatrix(cl, bind[i].scale);
+      matrixScale = bind[i].scale;
     }
     // Binds only when the unit's binding changes, as a renderer tracking its state would.
-    const ResourceId smp = sampler(ws, wt);
-    if (smp != boundSampler) cl.bindSampler(0, boundSampler = smp);
-    if (it->second != boundTexture) cl.bindTexture(0, boundTexture = it->second);
+    if (bind[i].sampler != boundSampler) cl.bindSampler(0, boundSampler = bind[i].sampler);
+    if (bind[i].texture != boundTexture) cl.bindTexture(0, boundTexture = bind[i].texture);
     cl.draw(d.first * 3, d.count * 3);
-    f.drawTexture[i] = BoundTexture{chain->width, chain->height, uint32_t(chain->levels.size()), double(scale)};
   }
   return f;
 }

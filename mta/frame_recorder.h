@@ -2,7 +2,8 @@
 // counted exactly (raster/counters.h) and the oracle renders it.
 //
 // Implements: the frame's resources (one RGBA8 colour target and a D32F depth target, the runtime
-// vertex array, one texture with a full mip chain per texture bound this frame, the samplers) and its
+// vertex array, one texture with a full mip chain per texture bound this frame, the samplers, all before
+// the first draw) and its
 // commands in plan order: an atlas draw binds the node's atlas, sets the texture matrix diag(2^level)
 // (§4.5.4, REPEAT addressing) and draws root-atlas texcoords; an original draw binds the scene texture
 // with its wrap modes and the identity matrix and draws the original texcoords; untextured triangles and
