@@ -186,6 +186,7 @@ RecordedFrame recordFrame(const MtaMeta& meta, const RuntimeGeometry& geometry, 
   float matrixScale = -1.0f;
   int layoutKind = -1;  // 1 atlas coords, 0 original coords
   ResourceId boundSampler = kNone, boundTexture = kNone;
+  bool tintGrey = false;
   std::map<uint64_t, ResourceId> texIds, samplerIds;
   auto sampler = [&](Wrap s, Wrap t) {
     const uint64_t key = uint64_t(s) * 16 + uint64_t(t);
@@ -212,6 +213,7 @@ RecordedFrame recordFrame(const MtaMeta& meta, const RuntimeGeometry& geometry, 
   struct Binding {
     ResourceId texture = kNone, sampler = kNone;
     float scale = 1.0f;
+    bool grey = false;  // untextured triangles
   };
   std::vector<Binding> bind(plan.draws.size());
   for (size_t i = 0; i < plan.draws.size(); ++i) {
@@ -232,6 +234,7 @@ RecordedFrame recordFrame(const MtaMeta& meta, const RuntimeGeometry& geometry, 
     } else {
       chain = &kWhite;
       key = uint64_t(3) << 62;
+      bind[i].grey = d.source == DrawSource::Untextured;
     }
     auto [it, fresh] = texIds.emplace(key, kNone);
     if (fresh) it->second = upload(cl, *chain);
@@ -245,6 +248,11 @@ RecordedFrame recordFrame(const MtaMeta& meta, const RuntimeGeometry& geometry, 
     if (wantLayout != layoutKind) {
       cl.setVertexLayout(layout(wantLayout == 1, false));
       layoutKind = wantLayout;
+    }
+    if (bind[i].grey != tintGrey) {
+      static const float kGrey[4] = {0.62f, 0.6f, 0.55f, 1.0f}, kWhiteTint[4] = {1, 1, 1, 1};
+      cl.setUniforms(7, bind[i].grey ? kGrey : kWhiteTint);
+      tintGrey = bind[i].grey;
     }
     if (bind[i].scale != matrixScale) {
       setTextureMatrix(cl, bind[i].scale);

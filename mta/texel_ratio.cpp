@@ -114,7 +114,7 @@ TexelFrame analyzeTexels(const TreeRenderer& renderer, const Camera& camera, con
       if (tri == 0xffffffffu || tri >= g.triangleCount() || drawOf[tri] < 0) continue;
       const PlannedDraw& d = frame.plan.draws[size_t(drawOf[tri])];
       const BoundTexture& bt = frame.drawTexture[size_t(drawOf[tri])];
-      if (d.source == DrawSource::White) {
+      if (d.source == DrawSource::White || d.source == DrawSource::Untextured) {
         out.source[pix] = 3;
         ++out.pixelsWhite;
         continue;

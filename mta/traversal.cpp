@@ -177,7 +177,7 @@ struct Planner {
         const TextureRun& run = g.runs[lr.runFirst + r];
         append(plan.draws, {DrawSource::Original, uint8_t(tree), leaf, run.texture, run.first, run.count});
       }
-    append(white, {DrawSource::White, uint8_t(tree), 0, -1, lr.untexturedFirst, lr.untexturedCount});
+    append(white, {DrawSource::Untextured, uint8_t(tree), 0, -1, lr.untexturedFirst, lr.untexturedCount});
   }
 
   // renderNode (Figure 26): the node's atlas for every visible leaf below it.

@@ -70,7 +70,9 @@ ViewContext makeViewContext(const MtaMeta& meta, const ViewParams& view);
 // One entry per paging-file block.
 std::vector<BlockPriority> usagePriorities(const MtaMeta& meta, const BlockIndex& index, const ViewContext& ctx);
 
-enum class DrawSource : uint8_t { Atlas, Original, White };
+// White: the dummy run's one texture. Untextured: triangles without a texture (the presets' terrain and
+// roofs), drawn with the same 1x1 white texture and a grey tint so that they read as ground.
+enum class DrawSource : uint8_t { Atlas, Original, White, Untextured };
 struct PlannedDraw {
   DrawSource source = DrawSource::Atlas;
   uint8_t tree = 0;
