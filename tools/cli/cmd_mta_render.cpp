@@ -261,6 +261,7 @@ nlohmann::json runTexelImpl(PathRunArgs a) {
     if (!a.quiet) std::fprintf(stderr, "texel: %s is a model; building its atlas tree into %s\n", a.input.c_str(), treePath.c_str());
     auto model = std::make_shared<const model::Model>(model::loadModel(a.input));
     mta::BuildParams p;
+    p.dMin = a.buildDMin;
     p.progress = !a.quiet;
     mta::buildMta(mta::sceneFromModel(model), p, treePath);
   }
@@ -353,6 +354,9 @@ void addMtaRenderCommands(CLI::App& app, CLI::App* mtaCmd) {
   texel->add_option("input", ta->input, "Paging file (.mta), or a model (glTF, OBJ, ...) whose tree is built first into OUT/tree.mta")
       ->required();
   addPathRunOptions(texel, *ta, true);
+  texel->add_option("--d-min", ta->buildDMin,
+                    "With a model: d_min of its atlas tree build (default: scene diagonal / 72, which for a small scene "
+                    "such as railway.glb means gigatexels; see docs/mta-build.md)");
   texel->callback([ta] { std::printf("%s\n", runTexel(*ta).dump(2).c_str()); });
 }
 

@@ -29,6 +29,7 @@ struct PathRunArgs {
   int threads = 0;
   uint32_t saveEvery = 25;    // 0 = no frame images
   bool quiet = false;
+  double buildDMin = 0.0;     // texel with a model: d_min of the build (0 = D / 72)
 };
 
 // Registers the options above on a subcommand.
