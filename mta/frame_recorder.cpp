@@ -30,7 +30,15 @@ void TextureCache::prune() {
 }
 
 std::vector<uint8_t> TextureCache::blockBytes(uint32_t block) {
-  if (!residency_) return file_.readBlock(block);
+  if (!residency_) {
+    // Original blocks pack many images in first-use order, so the images of one leaf mostly share a
+    // block: keep the last few read (each read verifies the block's SHA-256, which dominated `mta runs`).
+    for (const auto& [b, bytes] : recentBlocks_)
+      if (b == block) return bytes;
+    if (recentBlocks_.size() == 4) recentBlocks_.erase(recentBlocks_.begin());
+    recentBlocks_.emplace_back(block, file_.readBlock(block));
+    return recentBlocks_.back().second;
+  }
   const auto span = residency_->data(block);
   if (span.empty()) throw Error("texture cache: internal error: block " + std::to_string(block) + " is not in memory");
   return {span.begin(), span.end()};

@@ -58,6 +58,7 @@ class TextureCache {
   const Residency* residency_;
   uint64_t fileCacheBytes_, bytes_ = 0;
   std::map<uint64_t, Entry> entries_;
+  std::vector<std::pair<uint32_t, std::vector<uint8_t>>> recentBlocks_;  // file mode only
 };
 
 struct RecordParams {
