@@ -29,7 +29,9 @@ void TextureCache::prune() {
   }
 }
 
-std::vector<uint8_t> TextureCache::blockBytes(uint32_t block) {
+// The bytes of a block, valid until the next call: resident data, or (file mode) one of the last few
+// blocks read.
+std::span<const uint8_t> TextureCache::blockBytes(uint32_t block) {
   if (!residency_) {
     // Original blocks pack many images in first-use order, so the images of one leaf mostly share a
     // block: keep the last few read (each read verifies the block's SHA-256, which dominated `mta runs`).
@@ -41,7 +43,7 @@ std::vector<uint8_t> TextureCache::blockBytes(uint32_t block) {
   }
   const auto span = residency_->data(block);
   if (span.empty()) throw Error("texture cache: internal error: block " + std::to_string(block) + " is not in memory");
-  return {span.begin(), span.end()};
+  return span;
 }
 
 const MipChain& TextureCache::store(uint64_t key, std::shared_ptr<MipChain> chain, std::vector<std::pair<uint32_t, uint64_t>> blocks) {
@@ -76,7 +78,7 @@ const MipChain& TextureCache::atlas(uint8_t tree, uint32_t node) {
   if (auto it = entries_.find(key); it != entries_.end()) return *it->second.chain;
   const MtaMeta& m = file_.meta();
   const uint32_t block = m.trees[tree].atlasBlocks[size_t(node) * m.layerCount];
-  const std::vector<uint8_t> raw = blockBytes(block);
+  const std::span<const uint8_t> raw = blockBytes(block);
   const uint32_t a = m.params.atlasSize;
   auto chain = std::make_shared<MipChain>();
   chain->width = chain->height = a;
@@ -94,7 +96,7 @@ const MipChain& TextureCache::image(uint32_t image) {
   const size_t rowBytes = size_t(r.width) * r.channels;
   for (uint32_t k = 0; k < r.pieceCount; ++k) {
     const PieceRecord& p = m.pieces[r.firstPiece + k];
-    const std::vector<uint8_t> bytes = blockBytes(p.block);
+    const std::span<const uint8_t> bytes = blockBytes(p.block);
     std::memcpy(texels.data() + size_t(p.row0) * rowBytes, bytes.data() + p.offset, size_t(p.rows) * rowBytes);
     blocks.emplace_back(p.block, residency_ ? residency_->generation(p.block) : 0);
   }

@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "mta/paging_file.h"
@@ -52,7 +53,7 @@ class TextureCache {
     std::shared_ptr<MipChain> chain;
     std::vector<std::pair<uint32_t, uint64_t>> blocks;  // (block, generation) it was made from
   };
-  std::vector<uint8_t> blockBytes(uint32_t block);
+  std::span<const uint8_t> blockBytes(uint32_t block);
   const MipChain& store(uint64_t key, std::shared_ptr<MipChain> chain, std::vector<std::pair<uint32_t, uint64_t>> blocks);
   const PagingFile& file_;
   const Residency* residency_;

@@ -24,6 +24,11 @@ TreeRenderer::TreeRenderer(const PagingFile& file, RendererOptions options)
 
 TreeRenderer::~TreeRenderer() = default;
 
+// Attachment 0 of the frame just executed (the recorder's target), level 0.
+std::vector<uint8_t> TreeRenderer::presentedLevel0() const {
+  return backend_->texture(backend_->presented().at(0).texture)->levels[0];
+}
+
 ViewParams TreeRenderer::view(const Camera& camera) const {
   ViewParams v;
   v.camera = camera;
@@ -66,9 +71,7 @@ FrameResult TreeRenderer::renderFrame(const Camera& camera) {
   t0 = std::chrono::steady_clock::now();
   backend_->execute(rec.list, "atlas tree frame " + std::to_string(r.frame));
   r.renderMs = msSince(t0);
-  const auto shown = backend_->presented();
-  const TextureData* tex = backend_->texture(shown.at(0).texture);
-  r.image = tex->levels[0];
+  r.image = presentedLevel0();
   return r;
 }
 
@@ -80,10 +83,9 @@ std::vector<uint32_t> TreeRenderer::triangleIds(const Camera& camera, const Fram
   rp.idFrame = true;
   RecordedFrame rec = recordFrame(file_.meta(), geometry_, plan, v, *textures_, rp);
   backend_->execute(rec.list, "atlas tree id frame");
-  const auto shown = backend_->presented();
-  const TextureData* tex = backend_->texture(shown.at(0).texture);
+  const std::vector<uint8_t> bytes = presentedLevel0();
   std::vector<uint32_t> ids(size_t(options_.width) * options_.height);
-  std::memcpy(ids.data(), tex->levels[0].data(), ids.size() * 4);
+  std::memcpy(ids.data(), bytes.data(), ids.size() * 4);
   return ids;
 }
 

@@ -65,6 +65,7 @@ class TreeRenderer {
   ViewParams view(const Camera& camera) const;
 
  private:
+  std::vector<uint8_t> presentedLevel0() const;
   const PagingFile& file_;
   RendererOptions options_;
   RuntimeGeometry geometry_;
