@@ -8,7 +8,7 @@
 
 #include "model/city_scene.h"
 #include "raster/command_list.h"
-#include "tools/scenes/builder.h"
+#include "base/det_math.h"
 
 namespace tessera::model {
 
@@ -34,9 +34,6 @@ void Primitive::triangle(const Float3 (&p)[3], const Float2 (&t)[3]) {
 
 namespace {
 
-using scenes::detCos;
-using scenes::detSin;
-using scenes::kPi;
 
 struct Rng {
   uint64_t state;

@@ -1,12 +1,10 @@
 // Writing a generated city as glTF 2.0: DIR/<name>.gltf (JSON), DIR/<name>.bin (positions, then
 // texcoords, then uint32 indices, one bufferView each) and DIR/textures/tNNNNN.png|jpg.
 // Textures are rendered and encoded in parallel (TBB), each into its own file, so the bytes do not
-// depend on the schedule. Every file is written to <path>.tmp-<pid> and renamed; the .gltf comes
+// depend on the schedule. Every file is written atomically (base/atomic_file.h); the .gltf comes
 // last, so its presence means the rest is complete.
-#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
-#include <unistd.h>
 
 #include <atomic>
 #include <cstdio>
@@ -15,9 +13,11 @@
 #include <fstream>
 #include <mutex>
 
+#include "base/atomic_file.h"
+#include "base/det_math.h"
 #include "model/city_scene.h"
 #include "raster/command_list.h"
-#include "tools/scenes/builder.h"
+#include "raster/image_io.h"
 
 namespace tessera::model::city {
 
@@ -25,51 +25,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string tempName(const std::string& path) { return path + ".tmp-" + std::to_string(::getpid()); }
-
-void commit(const std::string& tmp, const std::string& path) {
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw Error(path + ": cannot rename the finished temporary file into place");
-  }
-}
-
 void writeBytes(const std::string& path, const void* data, size_t size) {
-  const std::string tmp = tempName(path);
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) throw Error(path + ": cannot open for writing");
-    f.write(static_cast<const char*>(data), std::streamsize(size));
-    f.flush();
-    if (!f) {
-      f.close();
-      std::remove(tmp.c_str());
-      throw Error(path + ": write failed");
-    }
-  }
-  commit(tmp, path);
+  writeFileAtomically(path, std::span<const uint8_t>(static_cast<const uint8_t*>(data), size));
 }
 
 void writeImageFile(const std::string& path, const TexSpec& t, const std::vector<uint8_t>& px, bool jpg) {
-  const int ch = t.rgba() ? 4 : 3;
-  OIIO::ImageSpec spec(int(t.width), int(t.height), ch, OIIO::TypeDesc::UINT8);
-  if (ch == 4) {
-    spec.alpha_channel = 3;
-    spec.attribute("oiio:UnassociatedAlpha", 1);  // store alpha as given, colour not premultiplied
-  }
+  Image8Options o;
   if (jpg)
-    spec.attribute("Compression", "jpeg:90");
+    o.jpegQuality = 90;
   else
-    spec.attribute("png:compressionLevel", 1);
-  const std::string tmp = tempName(path);
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) throw Error(path + ": cannot create an image writer: " + OIIO::geterror());
-  if (!out->open(tmp, spec) || !out->write_image(OIIO::TypeDesc::UINT8, px.data()) || !out->close()) {
-    const std::string e = out->geterror();
-    std::remove(tmp.c_str());
-    throw Error(path + ": write failed: " + e);
-  }
-  commit(tmp, path);
+    o.pngCompressionLevel = 1;
+  writeImage8(path, int(t.width), int(t.height), t.rgba() ? 4 : 3, px.data(), o);
 }
 
 uint64_t fileSize(const std::string& path) {
@@ -132,7 +98,7 @@ void writeScene(const Scene& scene, const CityOptions& o, CitySummary& s) {
     nlohmann::json jn = {{"name", n.name}};
     if (n.translation != std::array<double, 3>{0, 0, 0}) jn["translation"] = n.translation;
     if (n.yaw != 0.0)  // about +Y: (0, sin(yaw/2), 0, cos(yaw/2)), stored as float like every glTF number
-      jn["rotation"] = {0.0, double(float(scenes::detSin(n.yaw / 2))), 0.0, double(float(scenes::detCos(n.yaw / 2)))};
+      jn["rotation"] = {0.0, double(float(detSin(n.yaw / 2))), 0.0, double(float(detCos(n.yaw / 2)))};
     if (!n.children.empty()) jn["children"] = n.children;
     if (!n.primitives.empty()) {
       nlohmann::json prims = nlohmann::json::array();

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "raster/command_list.h"
+#include "base/error.h"
 
 namespace tessera::model::detail::gltf {
 

@@ -19,7 +19,7 @@
 #include "model/gltf_accessors.h"
 #include "model/loaders.h"
 #include "raster/command_list.h"
-#include "tools/scenes/builder.h"
+#include "base/det_math.h"
 
 namespace tessera::model::detail {
 
@@ -284,8 +284,8 @@ class Builder {
       // KHR_texture_transform: uv' = offset + R * (scale * uv) with u' = cos u + sin v, v' = -sin u + cos v: the
       // reading under which the extension's own example (offset [0, 1], rotation pi/2, scale 0.5) selects the
       // lower-left quadrant, as the reference viewers and the TextureTransformTest sample model do.
-      const double c = uv.transform ? scenes::detCos(uv.rotation) : 1.0,
-                   s = uv.transform ? scenes::detSin(uv.rotation) : 0.0;
+      const double c = uv.transform ? detCos(uv.rotation) : 1.0,
+                   s = uv.transform ? detSin(uv.rotation) : 0.0;
       for (size_t i = 0; i < nv; ++i) {
         if (!uv.transform) {
           mesh.texcoords[i] = {t[i * 2], t[i * 2 + 1]};

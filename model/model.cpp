@@ -12,7 +12,7 @@
 #include <fstream>
 
 #include "model/loaders.h"
-#include "raster/command_list.h"
+#include "base/error.h"
 
 namespace tessera::model {
 

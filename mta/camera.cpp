@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "raster/command_list.h"
+#include "base/error.h"
 
 namespace tessera::mta {
 

@@ -13,8 +13,9 @@
 #include <fstream>
 #include <sstream>
 
+#include "base/atomic_file.h"
+#include "base/det_math.h"
 #include "raster/command_list.h"
-#include "tools/scenes/builder.h"
 
 namespace tessera::mta {
 
@@ -23,7 +24,7 @@ namespace {
 using V3 = std::array<double, 3>;
 
 constexpr uint32_t kMaxFrames = 1000000;  // a sanity bound: 96 MB of cameras
-constexpr double kTwoPi = 2.0 * scenes::kPi;
+constexpr double kTwoPi = 2.0 * kPi;
 
 V3 lerp(const V3& a, const V3& b, double s) {
   // (1 - s)·a + s·b rather than a + s·(b - a): s = 1 gives exactly b, so consecutive segments meet
@@ -145,7 +146,7 @@ std::vector<Segment> thesisSegments(const Layout& l) {
   const V3 spot = l.at(0.3 * l.E, l.ped, 0);
   // Every pair of consecutive view directions has horizontal parts with a positive dot product, so the
   // interpolated direction never becomes vertical (parallel to up) and eye and target never meet.
-  const double turnEnd = kTwoPi + 0.5 * scenes::kPi;  // 450°: ends looking along +v, towards over2's view
+  const double turnEnd = kTwoPi + 0.5 * kPi;  // 450°: ends looking along +v, towards over2's view
   const V3 endTurn = l.ahead(spot, l.v);
   return {
       {0, 60, false, walkA, l.ahead(walkA, l.u), walkB, l.ahead(walkB, l.u), 0, 0},     // pedestrian walk
@@ -166,7 +167,7 @@ Camera thesisFrame(const Layout& l, const std::vector<Segment>& segs, double t) 
   const double w = smoothstep(local);
   if (!s.turn) return l.camera(lerp(s.eye0, s.eye1, w), lerp(s.target0, s.target1, w));
   const double yaw = (1.0 - w) * s.yaw0 + w * s.yaw1;
-  const double c = scenes::detCos(yaw), sn = scenes::detSin(yaw);
+  const double c = detCos(yaw), sn = detSin(yaw);
   const V3 dir = {c * l.u[0] + sn * l.v[0], 0.0, c * l.u[2] + sn * l.v[2]};
   return l.camera(s.eye0, l.ahead(s.eye0, dir));
 }
@@ -189,7 +190,7 @@ CameraPath orbitPath(const Layout& l, uint32_t n) {
   const V3 centre = {l.cx, 0.5 * (l.minY + l.maxY), l.cz};
   for (uint32_t i = 0; i < n; ++i) {
     const double a = kTwoPi * double(i) / double(n);  // a closed loop: frame n would repeat frame 0
-    p.frames.push_back(l.camera({l.cx + r * scenes::detCos(a), y, l.cz + r * scenes::detSin(a)}, centre));
+    p.frames.push_back(l.camera({l.cx + r * detCos(a), y, l.cz + r * detSin(a)}, centre));
   }
   return p;
 }
@@ -342,8 +343,8 @@ CameraPath readPathFile(const std::string& path) {
       const double deg = number(t[1]);
       if (!(deg > 0.0 && deg < 180.0)) fail("fov " + std::string(t[1]) + ": must be in (0, 180) degrees");
       // The same formula as BuildParams::effectiveTanHalfFov, so equal degrees give equal bits.
-      const double half = deg * scenes::kPi / 360.0;
-      state.tanHalfFovX = scenes::detSin(half) / scenes::detCos(half);
+      const double half = deg * kPi / 360.0;
+      state.tanHalfFovX = detSin(half) / detCos(half);
     } else if (k == "tan_half_fov") {
       expectArgs(t, 1);
       state.tanHalfFovX = number(t[1]);
@@ -398,24 +399,7 @@ void writePathFile(const CameraPath& p, const std::string& path) {
            fmt(c.target[1]) + " " + fmt(c.target[2]) + "\n";
   }
 
-  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f) throw Error(path + ": cannot create '" + tmp + "': " + std::strerror(errno));
-  const bool ok =
-      std::fwrite(out.data(), 1, out.size(), f) == out.size() && std::fflush(f) == 0 && ::fsync(::fileno(f)) == 0;
-  const int err = errno;
-  if (std::fclose(f) != 0 || !ok) {
-    std::error_code ec;
-    std::filesystem::remove(tmp, ec);
-    throw Error(path + ": write failed: " + std::strerror(ok ? errno : err));
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ec2;
-    std::filesystem::remove(tmp, ec2);
-    throw Error(path + ": cannot rename '" + tmp + "': " + ec.message());
-  }
+  writeFileAtomically(path, out);
 }
 
 }  // namespace tessera::mta

@@ -3,7 +3,7 @@
 //
 // Implements: "thesis" (an imitation of the 300-frame Berlin animation of Buchholz's thesis §4.7.1:
 // rapid changes between pedestrian views and a full overview), "orbit" and "street"; reading and writing
-// path files. Everything is computed with + - * / sqrt and scenes::detSin/detCos only, so a path has the
+// path files. Everything is computed with + - * / sqrt and detSin/detCos (base/det_math.h) only, so a path has the
 // same bits on every machine.
 // Does not implement: the camera itself (camera.h), rendering along a path (tree_renderer.h).
 #pragma once

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "raster/command_list.h"
+#include "base/error.h"
 
 namespace tessera::mta {
 

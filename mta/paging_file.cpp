@@ -9,7 +9,7 @@
 #include <filesystem>
 
 #include "raster/command_list.h"
-#include "raster/sha256.h"
+#include "base/sha256.h"
 
 namespace tessera::mta {
 
@@ -308,31 +308,17 @@ void validateMeta(const MtaMeta& m, const std::string& path, uint64_t metaOffset
 
 const char* blockKindName(BlockKind k) { return k == BlockKind::Atlas ? "atlas" : k == BlockKind::Original ? "original" : "?"; }
 
-PagingFileWriter::PagingFileWriter(std::string path) : path_(std::move(path)) {
-  tmp_ = path_ + ".tmp-" + std::to_string(::getpid());
-  f_ = std::fopen(tmp_.c_str(), "wb");
-  if (!f_) throw Error(path_ + ": cannot create '" + tmp_ + "': " + std::strerror(errno));
+PagingFileWriter::PagingFileWriter(std::string path) : path_(std::move(path)), file_(path_) {
   const std::vector<uint8_t> zero(kHeaderSize, 0);
-  writeAt(0, zero.data(), zero.size());
+  file_.writeAt(0, zero);
 }
 
-PagingFileWriter::~PagingFileWriter() {
-  if (f_) std::fclose(f_);
-  if (!done_) {
-    std::error_code ec;
-    std::filesystem::remove(tmp_, ec);
-  }
-}
-
-void PagingFileWriter::writeAt(uint64_t offset, const void* data, size_t size) {
-  if (std::fseek(f_, long(offset), SEEK_SET) != 0 || std::fwrite(data, 1, size, f_) != size)
-    throw Error(path_ + ": write failed at byte " + std::to_string(offset) + ": " + std::strerror(errno));
-}
+PagingFileWriter::~PagingFileWriter() = default;
 
 uint32_t PagingFileWriter::addBlock(BlockKind kind, uint8_t tree, uint8_t layer, uint32_t node, std::span<const uint8_t> bytes) {
   end_ = (end_ + 15) & ~uint64_t(15);
   BlockInfo b{end_, bytes.size(), kind, tree, layer, node, sha256(bytes)};
-  writeAt(end_, bytes.data(), bytes.size());
+  file_.writeAt(end_, bytes);
   end_ += bytes.size();
   blocks_.push_back(b);
   return uint32_t(blocks_.size() - 1);
@@ -342,7 +328,7 @@ void PagingFileWriter::finish(MtaMeta& meta) {
   meta.blocks = blocks_;
   const std::vector<uint8_t> body = serialize(meta);
   const uint64_t metaOffset = (end_ + 15) & ~uint64_t(15);
-  writeAt(metaOffset, body.data(), body.size());
+  file_.writeAt(metaOffset, body);
   uint8_t h[kHeaderSize] = {};
   std::memcpy(h, kMagic, 8);
   const uint32_t version = kFormatVersion, hs = kHeaderSize;
@@ -353,14 +339,8 @@ void PagingFileWriter::finish(MtaMeta& meta) {
   std::memcpy(h + 40, ms.data(), 32);
   const auto hsha = sha256(std::span<const uint8_t>(h, 96));
   std::memcpy(h + 96, hsha.data(), 32);
-  writeAt(0, h, kHeaderSize);
-  if (std::fflush(f_) != 0 || ::fsync(::fileno(f_)) != 0) throw Error(path_ + ": flush failed: " + std::strerror(errno));
-  std::fclose(f_);
-  f_ = nullptr;
-  std::error_code ec;
-  std::filesystem::rename(tmp_, path_, ec);
-  if (ec) throw Error(path_ + ": cannot rename '" + tmp_ + "': " + ec.message());
-  done_ = true;
+  file_.writeAt(0, std::span<const uint8_t>(h, kHeaderSize));
+  file_.commit();
 }
 
 PagingFile::PagingFile(std::string path) : path_(std::move(path)) {

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "base/atomic_file.h"
 #include "mta/params.h"
 #include "mta/scene.h"
 #include "mta/tree.h"
@@ -67,8 +68,10 @@ struct MtaMeta {
 
 class PagingFileWriter {
  public:
-  explicit PagingFileWriter(std::string path);  // creates path.tmp-<pid>; throws Error on failure
-  ~PagingFileWriter();                           // removes the temporary file unless finish() succeeded
+  // Writes through an AtomicFile (base/atomic_file.h): path.tmp-<pid> until finish() renames it, removed
+  // on destruction, on SIGINT / SIGTERM, or by the next writer of `path` if this process is killed.
+  explicit PagingFileWriter(std::string path);  // throws Error on failure
+  ~PagingFileWriter();
   PagingFileWriter(const PagingFileWriter&) = delete;
   PagingFileWriter& operator=(const PagingFileWriter&) = delete;
   // Appends a block (16-byte aligned) and returns its index.
@@ -78,12 +81,10 @@ class PagingFileWriter {
   void finish(MtaMeta& meta);
 
  private:
-  void writeAt(uint64_t offset, const void* data, size_t size);
-  std::string path_, tmp_;
-  std::FILE* f_ = nullptr;
+  std::string path_;
+  AtomicFile file_;
   uint64_t end_ = kHeaderSize;
   std::vector<BlockInfo> blocks_;
-  bool done_ = false;
 };
 
 class PagingFile {

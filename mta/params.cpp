@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "raster/command_list.h"
-#include "tools/scenes/builder.h"
+#include "base/error.h"
+#include "base/det_math.h"
 
 namespace tessera::mta {
 
@@ -23,8 +23,8 @@ void BuildParams::validate() const {
 
 double BuildParams::effectiveTanHalfFov() const {
   if (tanHalfFov > 0.0) return tanHalfFov;
-  const double half = fovDegrees * scenes::kPi / 360.0;  // deterministic: no libm tan (CONTRIBUTING.md)
-  return scenes::detSin(half) / scenes::detCos(half);
+  const double half = fovDegrees * kPi / 360.0;  // deterministic: no libm tan (CONTRIBUTING.md)
+  return detSin(half) / detCos(half);
 }
 
 double projectionFactor(const BuildParams& p, double d) {

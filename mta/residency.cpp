@@ -4,7 +4,7 @@
 #include <charconv>
 #include <chrono>
 
-#include "raster/command_list.h"
+#include "base/error.h"
 
 namespace tessera::mta {
 

@@ -4,7 +4,7 @@
 #include <map>
 #include <tuple>
 
-#include "raster/command_list.h"
+#include "base/error.h"
 
 namespace tessera::mta {
 

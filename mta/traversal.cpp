@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "raster/command_list.h"
+#include "base/error.h"
 
 namespace tessera::mta {
 

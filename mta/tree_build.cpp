@@ -8,7 +8,7 @@
 
 #include "mta/packing.h"
 #include "mta/split.h"
-#include "raster/command_list.h"
+#include "base/error.h"
 
 namespace tessera::mta {
 

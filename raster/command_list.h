@@ -14,13 +14,13 @@
 
 #include <array>
 #include <cstdint>
-#include <stdexcept>
 #include <span>
 #include <string>
 #include <string_view>
 #include <variant>
 #include <vector>
 
+#include "base/error.h"
 #include "raster/limits.h"
 #include "raster/types.h"
 
@@ -170,10 +170,5 @@ uint32_t levelWidth(const TextureDesc& d, uint32_t level);
 uint32_t levelHeight(const TextureDesc& d, uint32_t level);
 // Number of levels of a full chain for w x h: floor(log2(max(w, h))) + 1.
 uint32_t fullMipCount(uint32_t w, uint32_t h);
-
-// The error type of the whole project: a message that already names the file / command / field.
-struct Error : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 }  // namespace tessera

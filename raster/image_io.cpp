@@ -1,12 +1,12 @@
 #include "raster/image_io.h"
 
 #include <OpenImageIO/imageio.h>
-#include <unistd.h>
 
 #include <cstdio>
 #include <cstring>
 
-#include "raster/sha256.h"
+#include "base/atomic_file.h"
+#include "base/sha256.h"
 
 namespace tessera {
 
@@ -29,23 +29,12 @@ std::string imageExtension(Format f) { return isUnorm(f) ? ".png" : ".exr"; }
 namespace {
 
 void writeAtomically(const std::string& path, const OIIO::ImageSpec& spec, const void* pixels) {
-  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
-  auto out = OIIO::ImageOutput::create(path);  // format from the final name's extension
-  if (!out) throw Error(path + ": cannot create an image writer: " + OIIO::geterror());
-  if (!out->open(tmp, spec)) {
-    std::string e = out->geterror();
-    std::remove(tmp.c_str());
-    throw Error(path + ": cannot open for writing: " + e);
-  }
-  if (!out->write_image(spec.format, pixels) || !out->close()) {
-    std::string e = out->geterror();
-    std::remove(tmp.c_str());
-    throw Error(path + ": write failed: " + e);
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw Error(path + ": cannot rename the finished temporary file into place");
-  }
+  writeFileAtomically(path, [&](const std::string& tmp) {
+    auto out = OIIO::ImageOutput::create(path);  // format from the final name's extension
+    if (!out) throw Error(path + ": cannot create an image writer: " + OIIO::geterror());
+    if (!out->open(tmp, spec)) throw Error(path + ": cannot open for writing: " + out->geterror());
+    if (!out->write_image(spec.format, pixels) || !out->close()) throw Error(path + ": write failed: " + out->geterror());
+  });
 }
 
 }  // namespace
@@ -100,9 +89,18 @@ DecodedImage readImage(const std::string& path) {
 }
 
 void writePngRGBA8(const std::string& path, int width, int height, const uint8_t* topDownRows) {
-  OIIO::ImageSpec spec(width, height, 4, OIIO::TypeDesc::UINT8);
-  spec.alpha_channel = 3;
-  spec.attribute("oiio:UnassociatedAlpha", 1);
+  writeImage8(path, width, height, 4, topDownRows);
+}
+
+void writeImage8(const std::string& path, int width, int height, int channels, const uint8_t* topDownRows,
+                 const Image8Options& options) {
+  OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
+  if (channels == 4) {
+    spec.alpha_channel = 3;
+    spec.attribute("oiio:UnassociatedAlpha", 1);  // store alpha as given, colour not premultiplied
+  }
+  if (options.jpegQuality > 0) spec.attribute("Compression", "jpeg:" + std::to_string(options.jpegQuality));
+  if (options.pngCompressionLevel >= 0) spec.attribute("png:compressionLevel", options.pngCompressionLevel);
   writeAtomically(path, spec, topDownRows);
 }
 

@@ -35,4 +35,13 @@ DecodedImage readImage(const std::string& path);
 // Writes tightly packed RGBA8 rows (top row first) as PNG, atomically.
 void writePngRGBA8(const std::string& path, int width, int height, const uint8_t* topDownRows);
 
+// Writes tightly packed 8-bit rows (top row first, 1-4 channels, alpha unassociated) in the format
+// that the extension of `path` names (.png, .jpg, ...), atomically (base/atomic_file.h).
+struct Image8Options {
+  int jpegQuality = 0;           // > 0: JPEG "Compression" quality
+  int pngCompressionLevel = -1;  // >= 0: zlib level for PNG
+};
+void writeImage8(const std::string& path, int width, int height, int channels, const uint8_t* topDownRows,
+                 const Image8Options& options = {});
+
 }  // namespace tessera

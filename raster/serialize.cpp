@@ -14,7 +14,8 @@
 #include <type_traits>
 #include <utility>
 
-#include "raster/sha256.h"
+#include "base/atomic_file.h"
+#include "base/sha256.h"
 
 namespace tessera {
 namespace {
@@ -394,16 +395,6 @@ constexpr auto kDecoders = makeDecoders(std::make_index_sequence<kCommandKinds>(
   throw Error(fmt::format("{}: {}: {}", path, what, std::error_code(err, std::generic_category()).message()));
 }
 
-// Removes the temporary file if the write does not complete.
-struct TempFile {
-  std::string path;
-  int fd = -1;
-  bool keep = false;
-  ~TempFile() {
-    if (fd >= 0) ::close(fd);
-    if (!keep) ::unlink(path.c_str());
-  }
-};
 
 }  // namespace
 
@@ -553,34 +544,7 @@ CommandList decodeFrame(std::span<const uint8_t> bytes, std::string_view sourceN
 }
 
 void writeFrame(const CommandList& list, const std::string& path) {
-  const std::vector<uint8_t> bytes = encodeFrame(list);
-  TempFile tmp{path + ".tmp-" + std::to_string(::getpid())};
-  tmp.fd = ::open(tmp.path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (tmp.fd < 0) {
-    const int err = errno;
-    tmp.keep = true;  // nothing was created; never unlink a file someone else owns
-    failErrno(path, fmt::format("cannot create temporary file {}", tmp.path), err);
-  }
-  for (size_t done = 0; done < bytes.size();) {
-    const ssize_t n = ::write(tmp.fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) failErrno(path, fmt::format("cannot write {}", tmp.path), n < 0 ? errno : EIO);
-    done += size_t(n);
-  }
-  // fsync before rename: otherwise a crash can leave the final name pointing at an empty file.
-  if (::fsync(tmp.fd) != 0) failErrno(path, fmt::format("cannot fsync {}", tmp.path), errno);
-  const int fd = tmp.fd;
-  tmp.fd = -1;
-  if (::close(fd) != 0) failErrno(path, fmt::format("cannot close {}", tmp.path), errno);
-  if (::rename(tmp.path.c_str(), path.c_str()) != 0) failErrno(path, "cannot rename the temporary file over it", errno);
-  tmp.keep = true;
-  // Make the rename itself durable; failure here cannot un-write the file, so it is not an error.
-  std::filesystem::path dir = std::filesystem::path(path).parent_path();
-  const int dirFd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dirFd >= 0) {
-    (void)::fsync(dirFd);
-    ::close(dirFd);
-  }
+  writeFileAtomically(path, encodeFrame(list));
 }
 
 CommandList readFrame(const std::string& path) {

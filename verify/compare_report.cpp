@@ -5,9 +5,9 @@
 #include <cstddef>
 #include <filesystem>
 
-#include "raster/command_list.h"
+#include "base/error.h"
 #include "raster/image_io.h"
-#include "verify/atomic_file.h"
+#include "base/atomic_file.h"
 #include "verify/image_read.h"
 #include "verify/report_html.h"
 
@@ -133,7 +133,7 @@ void writeCompareReport(const CompareResult& result, const std::string& dir) {
   if (ec || !std::filesystem::is_directory(dir)) throw Error(dir + ": cannot create the report directory");
   const std::string base = dir + "/";
   const nlohmann::json report = compareToJson(result);
-  writeTextAtomically(base + "report.json", report.dump(2) + "\n");
+  writeFileAtomically(base + "report.json", report.dump(2) + "\n");
   if (result.images) {
     const DecodedImage& a = *result.images->a;
     const DecodedImage& b = *result.images->b;
@@ -142,7 +142,7 @@ void writeCompareReport(const CompareResult& result, const std::string& dir) {
     writeCanvas(base + "heatmap.png", heatmap(result));
     writeCanvas(base + "histogram.png", histogramChart(result.histogram));
   }
-  writeTextAtomically(base + "index.html", renderReportHtml(result, report));
+  writeFileAtomically(base + "index.html", renderReportHtml(result, report));
 }
 
 }  // namespace tessera::verify

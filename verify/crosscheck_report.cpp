@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 
 #include "raster/image_io.h"
-#include "verify/atomic_file.h"
+#include "base/atomic_file.h"
 #include "verify/compare_report.h"
 
 namespace tessera::verify {
@@ -90,7 +90,7 @@ void writeCrosscheckReport(const CrosscheckResult& result, const std::string& di
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw Error(dir + ": cannot create the report directory: " + ec.message());
-  writeTextAtomically(dir + "/report.json", result.json.dump(2) + "\n");
+  writeFileAtomically(dir + "/report.json", result.json.dump(2) + "\n");
 
   std::string sections, data;
   for (size_t k = 0; k < result.images.size(); ++k) {
@@ -192,7 +192,7 @@ document.querySelectorAll('img').forEach(im=>{{const k=parseInt((im.getAttribute
       fmt::arg("first", result.json.contains("first_diverging_draw") ? "first diverging draw: " + result.json["first_diverging_draw"].dump(1) : ""),
       fmt::arg("sections", sections), fmt::arg("json", result.json.dump(1)), fmt::arg("names", names),
       fmt::arg("data", data));
-  writeTextAtomically(dir + "/index.html", html);
+  writeFileAtomically(dir + "/index.html", html);
 }
 
 }  // namespace tessera::verify

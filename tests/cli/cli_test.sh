@@ -9,7 +9,7 @@ json_field() { python3 -c "import json,sys; d=json.load(open(sys.argv[1])); prin
 
 case "$case_name" in
   demo_writes_report_and_images)
-    "$tessera" demo -o demo --threads 2 --railway "$src/../shared/data/railway.glb" > stdout.json
+    "$tessera" demo -o demo --threads 2 --railway "$src/data/railway.glb" > stdout.json
     for f in report.json index.html fill_fan.png city_block.png city_ids.exr city_ids.a1.exr city_block.tframe \
              mta/render/plot.png mta/runs/runs.png mta/texel/histogram.png mta/render/frames.json; do
       [ -s "demo/$f" ] || fail "demo did not write $f"
@@ -98,8 +98,8 @@ PY
     ! grep -qi "internal error" err.txt || fail "crashed: $(cat err.txt)"
     ;;
   atlas_tree_goldens_reproduce_bit_exactly)
-    # Includes the built-in scenes; the railway frames need ../shared/data/railway.glb beside the repo.
-    "$tessera" golden check --dir "$src/golden" --railway "$src/../shared/data/railway.glb" > check.json \
+    # Includes the built-in scenes; the railway frames render data/railway.glb.
+    "$tessera" golden check --dir "$src/golden" --railway "$src/data/railway.glb" > check.json \
       || fail "golden check failed: $(cat check.json)"
     [ "$(json_field check.json "['passed']")" -ge 16 ] || fail "fewer goldens than expected: $(cat check.json)"
     ;;

@@ -8,14 +8,14 @@
 
 #include "model/model.h"
 #include "model_test_util.h"
-#include "raster/command_list.h"
+#include "base/error.h"
 
 namespace tessera::model {
 namespace {
 
 using testing::ScratchDir;
 
-const std::string kRailway = TESSERA_SOURCE_DIR "/../shared/data/railway.glb";
+const std::string kRailway = TESSERA_SOURCE_DIR "/data/railway.glb";
 
 // Runs f, which must throw tessera::Error; returns its message.
 template <class F>

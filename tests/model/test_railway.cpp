@@ -1,4 +1,4 @@
-// railway.glb (shared/data): a real CityGML-derived glTF 2.0 scene with 28 embedded JPEG textures and
+// railway.glb (data/, see data/README.md): a real CityGML-derived glTF 2.0 scene with 28 embedded JPEG textures and
 // texcoords that repeat far outside [0, 1].
 #include <gtest/gtest.h>
 
@@ -8,18 +8,19 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "base/sha256.h"
 #include "model/model.h"
 
 namespace tessera::model {
 namespace {
 
-const std::string kRailway = TESSERA_SOURCE_DIR "/../shared/data/railway.glb";
+const std::string kRailway = TESSERA_SOURCE_DIR "/data/railway.glb";
 
 // Fails (never skips) when the file is missing: these tests are the loader's contact with real data.
 const Model& railway() {
   static const Model m = [] {
     if (!std::filesystem::exists(kRailway)) {
-      ADD_FAILURE() << kRailway << " is missing: it ships in shared/data beside the repository";
+      ADD_FAILURE() << kRailway << " is missing: it ships in data/ (data/README.md)";
       return Model{};
     }
     return loadModel(kRailway);
@@ -112,6 +113,16 @@ TEST(Railway, EveryTextureDecodesAndItsHeaderProbeAgrees) {
     std::printf("railway.glb texture %2zu: %ux%u, %d channels, %llu bytes\n", i, img.width, img.height,
                 img.fileChannels, (unsigned long long)m.textures[i].size);
   }
+}
+
+// data/README.md records the file's digest; the goldens and every figure in docs/model-import.md were
+// measured on exactly these bytes, so an edited copy must fail here first.
+TEST(Railway, TheRepositoryCopyHasTheDigestThatDataReadmeRecords) {
+  std::ifstream f(kRailway, std::ios::binary);
+  ASSERT_TRUE(f) << kRailway;
+  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(bytes.size(), 1341900u);
+  EXPECT_EQ(sha256Hex(bytes), "32642154dc0a1206686e11e5e0d1d785bb7ea68da669d2e3a7ec290167478a72");
 }
 
 }  // namespace

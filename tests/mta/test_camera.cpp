@@ -10,7 +10,7 @@
 #include "mta/camera.h"
 #include "mta/camera_path.h"
 #include "mta_test_scene.h"
-#include "raster/command_list.h"
+#include "base/error.h"
 
 namespace tessera::mta {
 namespace {

@@ -10,7 +10,7 @@
 #include "mta/info.h"
 #include "mta/paging_file.h"
 #include "mta_test_scene.h"
-#include "raster/command_list.h"
+#include "base/error.h"
 #include "raster/texture.h"
 
 namespace tessera::mta {

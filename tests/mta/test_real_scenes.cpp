@@ -24,7 +24,7 @@ void checkFile(const std::string& path, uint64_t trianglesIn) {
 }
 
 TEST(RealScenes, RailwayGlbBuildsAValidTree) {
-  const std::string path = std::string(TESSERA_SOURCE_DIR) + "/../shared/data/railway.glb";
+  const std::string path = std::string(TESSERA_SOURCE_DIR) + "/data/railway.glb";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not present";
   auto m = std::make_shared<const model::Model>(model::loadModel(path));
   const Scene s = sceneFromModel(m);

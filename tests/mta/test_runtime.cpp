@@ -7,7 +7,7 @@
 #include "mta/build.h"
 #include "mta/texel_ratio.h"
 #include "mta/tree_renderer.h"
-#include "raster/sha256.h"
+#include "base/sha256.h"
 #include "mta_test_scene.h"
 
 namespace tessera::mta {

@@ -7,7 +7,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "raster/sha256.h"
+#include "base/sha256.h"
 #include "tests/raster/render_helpers.h"
 #include "tools/scenes/scenes.h"
 

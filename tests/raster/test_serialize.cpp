@@ -13,7 +13,7 @@
 
 #include "raster/counters.h"
 #include "raster/serialize.h"
-#include "raster/sha256.h"
+#include "base/sha256.h"
 #include "raster/validate.h"
 
 namespace tessera {

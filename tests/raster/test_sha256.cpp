@@ -5,7 +5,7 @@
 #include <string_view>
 #include <vector>
 
-#include "raster/sha256.h"
+#include "base/sha256.h"
 
 namespace tessera {
 namespace {

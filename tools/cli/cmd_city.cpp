@@ -6,7 +6,7 @@
 
 #include "model/city_gen.h"
 #include "model/model.h"
-#include "raster/command_list.h"
+#include "base/error.h"
 #include "tools/cli/commands.h"
 
 namespace tessera::cli {

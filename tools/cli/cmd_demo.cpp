@@ -12,6 +12,7 @@
 
 #include "gl/gl_backend.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/repo_paths.h"
 #include "verify/crosscheck.h"
 #include "verify/crosscheck_report.h"
 #include "tools/cli/frame_job.h"
@@ -28,7 +29,7 @@ struct DemoArgs {
   bool checkThreads = true;
   bool gl = true;
   bool mta = true;
-  std::string railway = "../shared/data/railway.glb";
+  std::string railway = "data/railway.glb";
 };
 
 std::string htmlEscape(const std::string& s) {
@@ -173,8 +174,11 @@ void addDemoCommand(CLI::App& app) {
   demo->add_flag("!--no-thread-check", a->checkThreads, "Skip the 1-thread re-render that checks bit-identity");
   demo->add_flag("!--no-gl", a->gl, "Skip the oracle-vs-OpenGL cross-check of every scene");
   demo->add_flag("!--no-mta", a->mta, "Skip the atlas tree on railway.glb (build, render over the thesis path, runs, texel)");
-  demo->add_option("--railway", a->railway, "railway.glb, the real scene of the atlas tree demo")->capture_default_str();
-  demo->callback([a] { runDemo(*a); });
+  demo->add_option("--railway", a->railway, "railway.glb, the real scene of the atlas tree demo (data/README.md)")->capture_default_str();
+  demo->callback([a] {
+    a->railway = repoPath(a->railway);  // found from the clone's root or beside the build folder
+    runDemo(*a);
+  });
 }
 
 }  // namespace tessera::cli

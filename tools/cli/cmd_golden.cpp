@@ -17,10 +17,11 @@
 
 #include "raster/cpu_backend.h"
 #include "raster/image_io.h"
-#include "raster/sha256.h"
+#include "base/sha256.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/frame_job.h"
 #include "tools/cli/mta_golden.h"
+#include "tools/cli/repo_paths.h"
 #include "tools/scenes/scenes.h"
 
 namespace tessera::cli {
@@ -29,7 +30,7 @@ namespace {
 
 struct GoldenArgs {
   std::string dir = "golden";
-  std::string railway = "../shared/data/railway.glb";
+  std::string railway = "data/railway.glb";
   bool onlyFailing = false;
 };
 
@@ -193,15 +194,20 @@ void addGoldenCommands(CLI::App& app) {
   auto a = std::make_shared<GoldenArgs>();
   auto* check = golden->add_subcommand("check", "Re-render every scene; demand bit-exact pixels (exit 1 on any difference)");
   check->add_option("--dir", a->dir, "Golden directory")->capture_default_str();
-  check->add_option("--railway", a->railway, "railway.glb, the real scene of the atlas tree goldens")->capture_default_str();
+  check->add_option("--railway", a->railway, "railway.glb, the real scene of the atlas tree goldens (data/README.md)")->capture_default_str();
+  // The defaults are repository paths: found from the clone's root or beside the build folder.
   check->callback([a] {
+    a->dir = repoPath(a->dir), a->railway = repoPath(a->railway);
     if (int rc = runGolden(*a, false)) throw CLI::RuntimeError(rc);
   });
   auto* update = golden->add_subcommand("update", "Regenerate golden images and the manifest; print what changed");
   update->add_option("--dir", a->dir, "Golden directory")->capture_default_str();
-  update->add_option("--railway", a->railway, "railway.glb, the real scene of the atlas tree goldens")->capture_default_str();
+  update->add_option("--railway", a->railway, "railway.glb, the real scene of the atlas tree goldens (data/README.md)")->capture_default_str();
   update->add_flag("--only-failing", a->onlyFailing, "Rewrite only the images that no longer match");
-  update->callback([a] { runGolden(*a, true); });
+  update->callback([a] {
+    a->dir = repoPath(a->dir), a->railway = repoPath(a->railway);
+    runGolden(*a, true);
+  });
 }
 
 }  // namespace tessera::cli

@@ -7,7 +7,7 @@
 #include "mta/info.h"
 #include "mta/paging_file.h"
 #include "mta/scene.h"
-#include "raster/command_list.h"
+#include "base/error.h"
 #include "tools/cli/commands.h"
 
 namespace tessera::cli {

@@ -10,7 +10,7 @@
 #include "mta/scene.h"
 #include "mta/texel_ratio.h"
 #include "raster/image_io.h"
-#include "raster/sha256.h"
+#include "base/sha256.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/frame_job.h"
 #include "tools/cli/mta_path_run.h"

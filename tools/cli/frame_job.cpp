@@ -10,11 +10,11 @@
 #include "raster/cpu_backend.h"
 #include "raster/image_io.h"
 #include "raster/serialize.h"
-#include "verify/atomic_file.h"
+#include "base/atomic_file.h"
 
 namespace tessera::cli {
 
-void writeTextFile(const std::string& path, const std::string& text) { verify::writeTextAtomically(path, text); }
+void writeTextFile(const std::string& path, const std::string& text) { writeFileAtomically(path, text); }
 
 std::pair<int, int> parseSize(const std::string& text, const char* option) {
   int w = 0, h = 0;

@@ -2,7 +2,7 @@
 #include <cstdio>
 #include <exception>
 
-#include "raster/command_list.h"
+#include "base/error.h"
 #include "tools/cli/commands.h"
 
 int main(int argc, char** argv) {

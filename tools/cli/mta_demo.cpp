@@ -10,7 +10,7 @@
 #include "mta/build.h"
 #include "mta/info.h"
 #include "mta/scene.h"
-#include "raster/command_list.h"
+#include "base/error.h"
 #include "tools/cli/mta_path_run.h"
 
 namespace tessera::cli {

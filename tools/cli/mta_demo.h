@@ -1,4 +1,4 @@
-// The atlas tree part of `tessera demo`: railway.glb (the real city scene in ../shared/data) built into an
+// The atlas tree part of `tessera demo`: railway.glb (the real city scene in data/, see data/README.md) built into an
 // atlas tree and run over the thesis path: memory-managed rendering with its plot, the three runs of
 // §4.7.2, and the texel-per-pixel analysis. Writes under OUT/mta and returns the report JSON and an
 // HTML section for index.html.

@@ -1,4 +1,4 @@
-// The atlas tree's golden frames: railway.glb (the real scene in ../shared/data) built with d_min 5 and
+// The atlas tree's golden frames: railway.glb (the real scene in data/, see data/README.md) built with d_min 5 and
 // rendered over the thesis path in a deterministic-budget mode. `tessera golden check|update` includes
 // them beside the built-in scenes; the entry's "command" reproduces each frame with the CLI.
 #pragma once

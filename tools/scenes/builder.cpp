@@ -7,21 +7,6 @@
 
 namespace tessera::scenes {
 
-double detSin(double x) {
-  // Reduce to [-pi, pi] with a fixed constant, then a Taylor series to x^23 (error < 1e-16 there).
-  const double twoPi = 2.0 * kPi;
-  x = x - twoPi * std::floor((x + kPi) / twoPi);
-  const double x2 = x * x;
-  double term = x, sum = x;
-  for (int n = 1; n <= 11; ++n) {
-    term = -term * x2 / double((2 * n) * (2 * n + 1));
-    sum = sum + term;
-  }
-  return sum;
-}
-
-double detCos(double x) { return detSin(x + 0.5 * kPi); }
-
 Mat4 Mat4::identity() {
   Mat4 r;
   r.m[0] = r.m[5] = r.m[10] = r.m[15] = 1.0f;

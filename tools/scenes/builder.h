@@ -1,4 +1,4 @@
-// Helpers for writing scenes: deterministic math (no libm), matrices, meshes, procedural
+// Helpers for writing scenes: matrices (from base/det_math.h, no libm), meshes, procedural
 // textures and the small recording idioms every scene repeats.
 #pragma once
 
@@ -8,15 +8,10 @@
 
 #include <cstddef>
 
+#include "base/det_math.h"
 #include "raster/command_list.h"
 
 namespace tessera::scenes {
-
-// Deterministic sine/cosine: range reduction by a fixed 2*pi and a Taylor series evaluated in a
-// fixed order with -ffp-contract=off, so every machine gets the same bits (libm does not promise that).
-double detSin(double x);
-double detCos(double x);
-constexpr double kPi = 3.14159265358979323846;
 
 struct Vec3 { float x, y, z; };
 // Column-major 4x4 (m[c * 4 + r]), as GL and the programs' uniform slots expect.
