@@ -5,8 +5,10 @@
 // fused. Everything that decides geometry (scene matrices, camera paths, field-of-view tangents,
 // glTF texture-transform rotations) uses these, because libm's sin/cos/tan are not promised to give
 // the same bits across libm versions or machines.
-// Does not implement: inverse functions, float overloads, or correctly rounded results: the error is
-// below 1e-16 on [-π, π], and what matters here is that it is the same error everywhere.
+// Does not implement: inverse functions, float overloads, or correctly rounded results. The series
+// stops after the x^23 term, so the absolute error grows towards ±π, where it reaches 1.71e-13
+// (measured against glibc's sin on 4,000,001 points of [-π, π]); on [-π/2, π/2] it is at most 4.4e-16.
+// What matters here is that it is the same error on every machine.
 // GLM provides the vector and matrix arithmetic (plain IEEE operations); its trigonometry calls libm,
 // so projections and rotations are built from these functions instead (never glm::perspective /
 // glm::rotate).

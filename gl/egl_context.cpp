@@ -98,7 +98,7 @@ EGLDisplay openDisplay(std::string& platform) {
       reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
   if (!hasExtension(client, "EGL_EXT_platform_base") || getPlatformDisplay == nullptr)
     fail("EGL_EXT_platform_base is not supported (client extensions: " + std::string(client) + ")");
-  // The surfaceless platform needs no window system and no DRM device (toolchain-probe §3).
+  // The surfaceless platform needs no window system and no DRM device (docs/gl-backend.md, "EGL setup").
   if (hasExtension(client, "EGL_MESA_platform_surfaceless")) {
     EGLDisplay d = getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     if (d != EGL_NO_DISPLAY) {
@@ -157,7 +157,8 @@ std::unique_ptr<EglContext> EglContext::create(bool debug) {
 
   if (!eglBindAPI(EGL_OPENGL_API)) fail("eglBindAPI(EGL_OPENGL_API) failed");
   // A surfaceless display has no window configs; the default EGL_SURFACE_TYPE (WINDOW_BIT) matches
-  // nothing (toolchain-probe pitfall 3), so ask for a pbuffer-capable config.
+  // nothing (EGL 1.5 §3.4.1: the default of EGL_SURFACE_TYPE is EGL_WINDOW_BIT), so ask for a
+  // pbuffer-capable config.
   const EGLint configAttribs[] = {EGL_SURFACE_TYPE,
                                   EGL_PBUFFER_BIT,
                                   EGL_RENDERABLE_TYPE,
@@ -176,8 +177,8 @@ std::unique_ptr<EglContext> EglContext::create(bool debug) {
   if (!eglChooseConfig(dpy, configAttribs, &config, 1, &count)) fail("eglChooseConfig failed");
   if (count < 1) throw Error(std::string("GL backend: eglChooseConfig found no RGBA8 pbuffer OpenGL config") + kHint);
 
-  // EGL_CONTEXT_FLAGS_KHR rather than the EGL 1.5 EGL_CONTEXT_OPENGL_DEBUG token, which EGL 1.4
-  // displays reject (toolchain-probe pitfall 5).
+  // EGL_CONTEXT_FLAGS_KHR (EGL_KHR_create_context) rather than the EGL 1.5 EGL_CONTEXT_OPENGL_DEBUG
+  // token, which displays that report EGL 1.4 reject with EGL_BAD_ATTRIBUTE.
   const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
                                    4,
                                    EGL_CONTEXT_MINOR_VERSION,

@@ -1,5 +1,5 @@
 // The one include for GL in the backend: GL 4.5 core prototypes straight from libOpenGL (libglvnd
-// exports every core entry point, DSA included), so no loader is involved (toolchain-probe §2).
+// exports every core entry point, DSA included), so no loader is involved (docs/gl-backend.md, "EGL setup").
 // Internal to gl/: public headers never include it.
 #pragma once
 

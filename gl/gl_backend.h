@@ -38,7 +38,7 @@ struct GlOptions {
   int lpThreads = -1;
   // Adds LP_PERF=no_rast_linear, LP_DEBUG=no_fastpath and GALLIVM_PERF=no_aos_sampling to the
   // environment: switches that drop llvmpipe fast paths without changing GL semantics
-  // (raster-anchors (d)). LP_DEBUG is honoured only by debug builds of Mesa (Debian's release
+  // (docs/gl-backend.md). LP_DEBUG is honoured only by debug builds of Mesa (Debian's release
   // swrast_dri.so does not contain the string), so it is set for completeness only.
   bool strict = false;
   // A KHR_debug context; glGetError after every command, reported with the command index.

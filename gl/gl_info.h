@@ -1,7 +1,7 @@
 // What a GL backend ran on: the EGL platform, GL strings, the llvmpipe environment switches and the
 // CPU features that decide llvmpipe's code generation. Recorded next to every GL image so a pixel
-// difference can be traced to the machine (raster-anchors (d): llvmpipe output depends on FMA,
-// vector width and GALLIUM_OVERRIDE_CPU_CAPS).
+// difference can be traced to the machine (llvmpipe generates code for the CPU it runs on, so its
+// output can depend on FMA, the vector width and GALLIUM_OVERRIDE_CPU_CAPS; docs/gl-backend.md).
 //
 // Implements: the record, its JSON form, parsing the Mesa version from GL_VERSION and the CPU
 // flags from /proc/cpuinfo. Does not implement: creating a context (egl_context.h).

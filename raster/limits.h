@@ -1,5 +1,5 @@
 // Hard limits and fixed-point constants of the oracle, each with its derivation.
-// One place for every number that decides a bit (raster-anchors: "hard limits live in one *_limits.h").
+// One place for every number that decides a bit: a limit that is written twice drifts.
 #pragma once
 
 #include <cstdint>

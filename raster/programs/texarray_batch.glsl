@@ -8,7 +8,7 @@
 //
 // Why a switch and not `uniform sampler2DArray TA[8]` indexed by arrayID: GLSL 4.50 §4.1.7 allows
 // only dynamically uniform sampler-array indices, and llvmpipe silently returns texels of the wrong
-// array for a per-pixel index (toolchain-probe.md). So the derivatives are taken first, in uniform
+// array for a per-pixel index (docs/gl-backend.md, "texarray_batch"). So the derivatives are taken first, in uniform
 // control flow (GLSL 4.50 §8.14.1: derivatives are undefined in non-uniform flow), and each case
 // samples one named sampler with textureGrad and those derivatives: the same lookup per pixel as the
 // C++, which also uses one quad's derivatives for every pixel whatever array it names.

@@ -141,6 +141,36 @@ PY
     if "$tessera" mta render tree.mta --budget 3furlongs -o out --quiet > /dev/null 2> err2.txt; then fail "accepted a bad budget"; fi
     grep -q -- "--budget" err2.txt || fail "message does not name the option: $(cat err2.txt)"
     ;;
+  interrupted_build_leaves_no_temporary)
+    # SIGTERM mid-write: exit 143, the temporary is gone, the previous output is intact.
+    printf 'previous output' > tree.mta
+    wait_for_temporary() {  # until the build's temporary exists and holds more than its header
+      for _ in $(seq 1200); do
+        t=$(ls tree.mta.tmp-* 2>/dev/null | head -1 || true)
+        if [ -n "$t" ] && [ "$(stat -c %s "$t" 2>/dev/null || echo 0)" -gt 200000 ]; then return 0; fi
+        sleep 0.1
+      done
+      fail "the build never started writing"
+    }
+    "$tessera" mta build "$src/data/railway.glb" -o tree.mta --quiet > /dev/null 2>&1 & pid=$!
+    wait_for_temporary
+    kill -TERM "$pid"
+    rc=0; wait "$pid" || rc=$?
+    [ "$rc" = 143 ] || fail "SIGTERM: exit status $rc, expected 143"
+    ls tree.mta.tmp-* > /dev/null 2>&1 && fail "SIGTERM left a temporary: $(ls tree.mta.tmp-*)"
+    [ "$(cat tree.mta)" = "previous output" ] || fail "SIGTERM damaged the previous output"
+    # SIGKILL cannot be caught: the temporary stays until the next writer of tree.mta removes it.
+    "$tessera" mta build "$src/data/railway.glb" -o tree.mta --quiet > /dev/null 2>&1 & pid=$!
+    wait_for_temporary
+    kill -KILL "$pid"
+    wait "$pid" || true
+    [ -e "tree.mta.tmp-$pid" ] || fail "expected the killed build's temporary tree.mta.tmp-$pid"
+    [ "$(cat tree.mta)" = "previous output" ] || fail "SIGKILL damaged the previous output"
+    "$tessera" city --preset berlin --buildings 4 -o city --quiet > /dev/null
+    "$tessera" mta build city/*.gltf -o tree.mta --d-min 50 --quiet > /dev/null
+    ls tree.mta.tmp-* > /dev/null 2>&1 && fail "the next build left the stale temporary: $(ls tree.mta.tmp-*)"
+    "$tessera" mta info tree.mta > /dev/null || fail "the new tree.mta is not valid"
+    ;;
   *) fail "unknown case $case_name" ;;
 esac
 echo "ok: $case_name"
