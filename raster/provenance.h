@@ -8,8 +8,8 @@
 // provenance mode. Program outputs are bounded by running the fragment program three times, with
 // the sampler returning the per-channel lower bound, the upper bound, and the oracle value. This is
 // valid because every built-in program is monotone (non-decreasing) in each sampled channel.
-// Does not implement: the tolerances themselves (docs/crosscheck.md derives them; rast.cpp and
-// sample_interval.cpp apply them) or the comparison (verify/).
+// Does not implement: the tolerances (raster/tolerances.h, each derived in docs/crosscheck.md;
+// rast_provenance.cpp, rast.cpp and sample_interval.cpp apply them) or the comparison (verify/).
 #pragma once
 
 #include <array>

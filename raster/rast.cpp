@@ -7,6 +7,7 @@
 
 #include "raster/fragops.h"
 #include "raster/provenance.h"
+#include "raster/tolerances.h"
 
 namespace tessera::detail {
 namespace {
@@ -53,7 +54,7 @@ void runClear(const Scene& scene, const ClearCmd& c, TextureData* tex, const Til
     std::memcpy(v, c.bits.data(), sizeof v);
     for (int k = 0; k < channelCount(tex->desc.format); ++k) {
       const double x = (v[k] > 0.0f ? (v[k] < 1.0f ? double(v[k]) : 1.0) : 0.0) * 255.0;
-      const double tol = x * (1.0 / 4194304.0);  // 2^-22: a float32 product's rounding, with margin
+      const double tol = x * tolerance::kClearRel;  // a float32 product's rounding, with margin
       const int lo = std::max(0, int(std::ceil(x - tol - 0.5))), hi = std::min(255, int(std::floor(x + tol + 0.5)));
       if (lo != value[k] || hi != value[k]) ccls = kOutputRounding;
       clo[k] = uint8_t(std::min<int>(lo, value[k])), chi[k] = uint8_t(std::max<int>(hi, value[k]));

@@ -9,8 +9,8 @@
 // - the program's output interval: three runs (lower bound, upper bound, value) with the sampler in
 //   interval mode, widened by the output-rounding tolerance.
 // - BLEND_PRECISION: blending is evaluated at the 16 corners of (src, src alpha, dst, dst alpha), then
-//   widened by +-1 LSB for unorm.
-// The tolerances are derived in docs/crosscheck.md.
+//   widened by +-2.5 LSB for unorm.
+// The tolerances are in raster/tolerances.h, each derived in docs/crosscheck.md.
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -20,21 +20,10 @@
 #include "raster/fragops.h"
 #include "raster/provenance.h"
 #include "raster/rast.h"
+#include "raster/tolerances.h"
 
 namespace tessera::detail {
 namespace {
-
-// A vertex may snap to any neighbouring 1/256 grid point in another implementation (R1), so an edge
-// may move by up to sqrt(2) sub-pixels. Edges made by clipping may move by up to 1 px, because GL may
-// clip in float and snap the new vertices (raster-anchors B10).
-constexpr double kEdgeMarginSub = 1.4142135623730951;
-constexpr double kClipMarginSub = 256.0;
-// The same sample-position shift, in pixels (two implementations each off by half a sub-pixel step).
-constexpr double kPosTolPx = 1.0 / 128.0;
-// Float interpolation error of depth and outputs, relative.
-constexpr double kRelTol = 1.0 / 1048576.0;  // 2^-20
-constexpr double kDepthAbsTol = 1.0 / 2097152.0;  // 2^-21
-constexpr double kBlendTol = 2.5 / 255.0;
 
 inline double clamp01(double v) { return v > 0.0 ? (v < 1.0 ? v : 1.0) : 0.0; }
 
@@ -72,7 +61,7 @@ FragInterval fragInterval(const QuadOut (&o)[3], int a, int p, bool uintOut) {
     const QuadOut& val = o[2];
     const double g = std::fabs(double(val.color[a][1].f[c]) - val.color[a][0].f[c]) +
                      std::fabs(double(val.color[a][2].f[c]) - val.color[a][0].f[c]);
-    f.tol[c] = (std::isfinite(g) ? g * kPosTolPx : 0.0) + std::fabs(v[2]) * kRelTol;
+    f.tol[c] = (std::isfinite(g) ? g * tolerance::kSamplePosPx : 0.0) + std::fabs(v[2]) * tolerance::kInterpRel;
   }
   return f;
 }
@@ -131,7 +120,7 @@ void updateUnorm(TextureData& tex, const TargetView& tv, uint32_t layer, int32_t
       // GL's blending precision is free. An 8-bit blender (llvmpipe: lp_build_mul_norm) quantizes the
       // source and both factors to 8 bits and rounds both products: at most 5 half-LSB errors, so
       // the exact result may move by 2.5 LSB before the final rounding (docs/crosscheck.md).
-      unormRange(bmin[c] - kBlendTol, bmax[c] + kBlendTol, wlo[c], whi[c]);
+      unormRange(bmin[c] - tolerance::kBlendUnorm, bmax[c] + tolerance::kBlendUnorm, wlo[c], whi[c]);
     }
     classes |= kBlendPrecision | dstCls;
   }
@@ -238,14 +227,14 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
   double margin[3];
   for (int i = 0; i < 3; ++i) {
     const double len = std::sqrt(double(t.a[i]) * double(t.a[i]) + double(t.b[i]) * double(t.b[i]));
-    margin[i] = (t.clipped ? kClipMarginSub : kEdgeMarginSub) * len;
+    margin[i] = (t.clipped ? tolerance::kClipMarginSub : tolerance::kEdgeMarginSub) * len;
   }
   // Depth gradient per pixel from the plane z = sum(E_i z_i) / 2A.
   const double area = double(t.area2);
   double dzdx = 0.0, dzdy = 0.0;
   for (int i = 0; i < 3; ++i) dzdx += double(t.a[i]) * t.z[i], dzdy += double(t.b[i]) * t.z[i];
   dzdx = dzdx / area * double(kSubpixelOne), dzdy = dzdy / area * double(kSubpixelOne);
-  const double tolZ = kDepthAbsTol + (std::fabs(dzdx) + std::fabs(dzdy)) * kPosTolPx;
+  const double tolZ = tolerance::kDepthAbs + (std::fabs(dzdx) + std::fabs(dzdy)) * tolerance::kSamplePosPx;
   const uint16_t tieClass = t.clipped ? kClipEdge : kEdgeTie;
   const bool depthTest = ds.depth.test && tv.depth;
   const bool depthWrite = depthTest && ds.depth.write;
@@ -287,7 +276,8 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
           // equality under EQUAL / NOTEQUAL is not a near tie.
           const bool invariant = (ds.depth.func == CompareFunc::Equal || ds.depth.func == CompareFunc::NotEqual) &&
                                  z[p] == stored;
-          if (!invariant && std::fabs(double(z[p]) - stored) <= tolZ + std::fabs(double(stored)) * kRelTol)
+          if (!invariant &&
+              std::fabs(double(z[p]) - stored) <= tolZ + std::fabs(double(stored)) * tolerance::kInterpRel)
             nearDepth |= uint8_t(1u << p);
         }
       }

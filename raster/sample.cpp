@@ -1,4 +1,6 @@
-// Texture sampling of the oracle (see sample.h for the rules; this file says why and where GL says so).
+// Exact texture lookups of the oracle (see sample.h for the rules; this file says why and where GL
+// says so). Lambda is computed in sample_lod.cpp; the interval lookups of provenance mode are in
+// sample_interval.cpp, which reuses makePlan() and sampleN() through sample_detail.h.
 //
 // Structure: a lookup is split into a per-quad "plan" (completeness, lambda -> filter, levels and
 // level weights, border texel in the storage domain) and a per-pixel filter templated on the format,
@@ -11,54 +13,33 @@
 // (exact) and rounded to float once.
 #include "raster/sample.h"
 
-#include "raster/provenance.h"
-
-#include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <limits>
 #include <type_traits>
 
+#include "raster/provenance.h"
+#include "raster/sample_detail.h"
+
 namespace tessera {
+
+using sample_detail::floorToInt;
+using sample_detail::kLevelWeightOne;
+using sample_detail::LevelRef;
+using sample_detail::makePlan;
+using sample_detail::Plan;
+using sample_detail::roundHalfEven;
+using sample_detail::sampleN;
+using sample_detail::sampleQuadInterval;
 
 namespace {
 
 constexpr uint32_t kWeightOne = 1u << kSubtexelBits;        // 256: one 8-bit weight
-constexpr uint32_t kLevelWeightOne = 1u << kLodFracBits;    // 256: one 8-bit mip blend weight
 constexpr double kTotalWeight = 16777216.0;                 // 2^24 = 256^3
 constexpr double kUnormDenominator = 255.0 * kTotalWeight;  // exact in double
 // Texel-space coordinates are clamped to +-2^52 before conversion to int64 (2^52 * 256 < 2^63).
 // Floats of that magnitude are multiples of 2^29, far beyond any meaningful coordinate.
 constexpr float kCoordLimit = 4503599627370496.0f;  // 2^52
-
-// floor(x) as an integer for |x| < 2^62, without libm (std::floor is a library call on baseline
-// x86-64 and would dominate the per-tap cost).
-inline int64_t floorToInt(double x) {
-  int64_t t = int64_t(x);  // truncation toward zero, exact for |x| < 2^63
-  if (double(t) > x) --t;
-  return t;
-}
-
-// Round half to even of x (|x| < 2^62) to an integer, independent of the FP rounding mode.
-inline int64_t roundHalfEven(double x) {
-  int64_t f = floorToInt(x);
-  // d is exact unless -1/2 < x < 0, where rounding can only move it towards 1, never across 1/2.
-  const double d = x - double(f);
-  if (d > 0.5 || (d == 0.5 && (f & 1) != 0)) ++f;
-  return f;
-}
-
-// A float LOD parameter to 8.8 fixed point, round half to even (spec-choices "LOD": quantized once).
-// NaN maps to 0; the range is clamped to [kLodMinusInf, kLodMax].
-int32_t quantizeLod(float v) {
-  if (std::isnan(v)) return 0;
-  double x = double(v) * 256.0;  // exact
-  if (x < double(kLodMinusInf)) x = double(kLodMinusInf);
-  if (x > double(kLodMax)) x = double(kLodMax);
-  return int32_t(roundHalfEven(x));  // |x| <= 2^20
-}
 
 // GL 4.6 §8.17 texture completeness, and §11.1.3.5: sampling an incomplete texture returns
 // (0, 0, 0, 1). An integer-format texture is incomplete unless the mag filter is NEAREST and the
@@ -83,31 +64,6 @@ inline void writeIncomplete(float out[4]) {
   out[3] = 1.0f;
 }
 
-struct LevelRef {
-  const uint8_t* data = nullptr;  // layer 0 of the level
-  uint64_t layerStride = 0;       // bytes per layer
-  int32_t w = 0, h = 0;
-  float fw = 0.0f, fh = 0.0f;  // w, h as float (exact: <= 16384)
-};
-
-// Everything about a lookup that does not depend on the pixel.
-struct Plan {
-  bool complete = false;
-  bool linear = false;  // texel filter within a level: LINEAR (true) or NEAREST
-  Wrap wrapS = Wrap::Repeat, wrapT = Wrap::Repeat;
-  uint32_t lastLayer = 0;
-  int levelCount = 0;  // 1 or 2
-  LevelRef lv[2];
-  uint32_t levelWeight[2] = {kLevelWeightOne, 0};  // sums to 256
-  // The border texel, stored like a texel of the texture (GL 4.6 §8.14.2: the border colour is
-  // "interpreted as an RGBA color to match the texture's internal format"; fixed-point components
-  // are clamped to [0, 1]). unorm8 borders are quantized to 8 bits (round half to even of c * 255)
-  // so that filtering stays in exact integers; float borders are stored as given; R32UI stores the
-  // bits of borderColor[0] (what a float border set with glSamplerParameterfv becomes when read as
-  // an integer, as in Mesa). A border tap then reads this texel like any other.
-  alignas(16) uint8_t border[16] = {};
-};
-
 LevelRef levelRef(const TextureData& tex, uint32_t level) {
   // levelWidth()/levelHeight() inlined: max(1, size >> level).
   LevelRef r;
@@ -129,6 +85,10 @@ LevelRef levelRef(const TextureData& tex, uint32_t level) {
   return r;
 }
 
+}  // namespace
+
+namespace sample_detail {
+
 Plan makePlan(const TexUnit& u, int32_t lambda8) {
   Plan p;
   const SamplerState& s = u.sampler.state;
@@ -147,7 +107,7 @@ Plan makePlan(const TexUnit& u, int32_t lambda8) {
   int32_t d1 = 0, d2 = 0;
   uint32_t frac = 0;  // weight of d2, 0..255
   if (lambda8 <= 0) {
-    // GL 4.6 §8.15: magnification iff lambda <= c, with c = 0 (spec-choices; llvmpipe's choice).
+    // GL 4.6 §8.15: magnification iff lambda <= c, with c = 0 (docs/spec-choices.md T4; llvmpipe's choice).
     // The base level with the mag filter.
     p.linear = s.magFilter == Filter::Linear;
   } else {
@@ -207,6 +167,10 @@ Plan makePlan(const TexUnit& u, int32_t lambda8) {
   }
   return p;
 }
+
+}  // namespace sample_detail
+
+namespace {
 
 // --- per-format texel access ---------------------------------------------------------------------
 
@@ -340,7 +304,7 @@ inline void accumulateLevel(const Plan& p, const LevelRef& L, float s, float t, 
   constexpr uint32_t bpt = texelBytes(F);
   constexpr int C = Fmt<F>::kChannels;
   const uint8_t* base = L.data + layer * L.layerStride;
-  // GL 4.6 §8.14.2: u = s * w_level, v = t * h_level, in float32 (spec-choices).
+  // GL 4.6 §8.14.2: u = s * w_level, v = t * h_level, in float32 (docs/spec-choices.md T7).
   const float u = s * L.fw;
   const float v = t * L.fh;
   if (!p.linear) {
@@ -407,6 +371,10 @@ inline void samplePlannedUint(const Plan& p, float s, float t, uint32_t layer, f
   out[3] = 1.0f;
 }
 
+}  // namespace
+
+namespace sample_detail {
+
 // n lookups sharing one plan; one format dispatch for all of them.
 void sampleN(const TexUnit& u, const Plan& p, int n, const float* s, const float* t, const uint32_t* layers,
              float (*out)[4]) {
@@ -439,20 +407,9 @@ void sampleN(const TexUnit& u, const Plan& p, int n, const float* s, const float
   }
 }
 
-// 64x64 -> 128-bit product of two Q1.62 numbers, returned as Q2.62 (floor). Both branches compute
-// the same exact integer; the portable one serves compilers without __int128.
-inline uint64_t mulQ62(uint64_t a, uint64_t b) {
-#if defined(__SIZEOF_INT128__)
-  return uint64_t((static_cast<unsigned __int128>(a) * b) >> 62);
-#else
-  const uint64_t aLo = a & 0xffffffffu, aHi = a >> 32, bLo = b & 0xffffffffu, bHi = b >> 32;
-  const uint64_t ll = aLo * bLo, lh = aLo * bHi, hl = aHi * bLo, hh = aHi * bHi;
-  const uint64_t mid = (ll >> 32) + (lh & 0xffffffffu) + (hl & 0xffffffffu);
-  const uint64_t hi = hh + (lh >> 32) + (hl >> 32) + (mid >> 32);
-  const uint64_t lo = (mid << 32) | (ll & 0xffffffffu);
-  return (hi << 2) | (lo >> 62);
-#endif
-}
+}  // namespace sample_detail
+
+namespace {
 
 // Implicit-LOD quad lookup shared by the 2D and 2D-array forms (layers: per pixel, already selected).
 void sampleQuadImpl(const TexUnit& u, const float s[4], const float t[4], const uint32_t layers[4], float bias,
@@ -462,7 +419,7 @@ void sampleQuadImpl(const TexUnit& u, const float s[4], const float t[4], const 
     return;
   }
   // GL 4.6 §8.14.1: u = s * w_base, v = t * h_base (the array layer is not part of rho).
-  // Coarse per-quad derivatives (spec-choices, llvmpipe's quad_lod): ddx = c[1] - c[0],
+  // Coarse per-quad derivatives (docs/spec-choices.md T1, llvmpipe's quad_lod): ddx = c[1] - c[0],
   // ddy = c[2] - c[0], in double.
   const double W = double(u.tex->desc.width), H = double(u.tex->desc.height);
   const double dudx = (double(s[1]) - double(s[0])) * W;
@@ -472,267 +429,6 @@ void sampleQuadImpl(const TexUnit& u, const float s[4], const float t[4], const 
   const int32_t lambda8 = computeLambda(dudx, dvdx, dudy, dvdy, u.sampler, bias);
   const Plan p = makePlan(u, lambda8);
   sampleN(u, p, 4, s, t, layers, out);
-}
-
-}  // namespace
-
-SamplerQ SamplerQ::from(const SamplerState& s) {
-  SamplerQ q;
-  q.state = s;
-  q.minLod8 = quantizeLod(s.minLod);
-  q.maxLod8 = quantizeLod(s.maxLod);
-  q.bias8 = quantizeLod(s.lodBias);
-  return q;
-}
-
-int64_t log2Fixed(double x, int fracBits) {
-  // Fraction bits of the documented intermediate.
-  constexpr int kBits = 24;
-  if (!(x > 0.0)) return std::numeric_limits<int64_t>::min();  // log2 of 0 / negative / NaN
-  if (std::isinf(x)) return std::numeric_limits<int64_t>::max();
-  if (fracBits < 0) fracBits = 0;
-  // x = m * 2^e with m in [1, 2), read from the IEEE-754 bits; m in Q1.62 (exact: 53 bits).
-  uint64_t bits;
-  std::memcpy(&bits, &x, sizeof bits);
-  const int biased = int(bits >> 52) & 0x7ff;
-  uint64_t mant = bits & ((uint64_t(1) << 52) - 1);
-  int e;
-  uint64_t m;
-  if (biased != 0) {  // normal
-    e = biased - 1023;
-    m = (mant | (uint64_t(1) << 52)) << 10;
-  } else {  // subnormal: mant * 2^-1074 with the leading one at bit p
-    const int p = 63 - std::countl_zero(mant);
-    e = p - 1074;
-    m = mant << (62 - p);
-  }
-  // log2(m) bit by bit: square m; if m^2 >= 2 the next bit is 1 and m^2 is halved. Each step
-  // truncates at 2^-62, so the bits are those of floor(2^k * log2(m)) up to an error < 2^-36 units
-  // of the 24th bit (exact for m = 1, i.e. for powers of two).
-  //
-  // Rounding: the spec rounds the 24-bit intermediate T = floor(2^24 log2 x) to fracBits bits. The
-  // first fracBits + 1 steps of the loop compute exactly the top bits P = T >> (23 - fracBits), and
-  // (T + 2^(23 - fracBits)) >> (24 - fracBits) == (P + 1) >> 1 for every T, so the loop stops after
-  // fracBits + 1 steps with a bit-identical result (8 steps instead of 24 for lambda).
-  // Round half up is right here: log2 of a double is an integer or irrational, so the exact value
-  // is never a tie, and a truncated value whose dropped bits read exactly 1/2 lies above the
-  // half-way point. The result is floor(2^fracBits * log2(x) + 1/2) = round-half-even of the exact
-  // value.
-  const int steps = fracBits < kBits ? fracBits + 1 : kBits;
-  int64_t f = 0;
-  for (int k = 0; k < steps; ++k) {
-    m = mulQ62(m, m);  // Q2.62, < 4
-    f <<= 1;
-    if (m >= (uint64_t(1) << 63)) {
-      f |= 1;
-      m >>= 1;
-    }
-  }
-  // floor(2^steps * log2 x); beyond 24 bits the result is only shifted (24 bits are computed).
-  const int64_t floorValue = int64_t(e) * (int64_t(1) << steps) + f;
-  if (fracBits >= kBits) return floorValue * (int64_t(1) << (fracBits - kBits));
-  return (floorValue + 1) >> 1;  // arithmetic shift: floor division
-}
-
-namespace {
-
-// lambda' and lambda from lambda_base (8.8): GL 4.6 §8.14.1, eq. 8.6 - 8.8.
-int32_t finishLambda(int32_t base, const SamplerQ& s, float shaderBias) {
-  // lambda' = lambda_base + clamp(bias_texobj + bias_shader, -MAX_TEXTURE_LOD_BIAS, +MAX_TEXTURE_LOD_BIAS).
-  constexpr int32_t kMaxBias8 = int32_t(kMaxLodBias * 256.0f);
-  int32_t bias = s.bias8 + quantizeLod(shaderBias);
-  if (bias < -kMaxBias8) bias = -kMaxBias8;
-  if (bias > kMaxBias8) bias = kMaxBias8;
-  int32_t lambda = base + bias;
-  // lambda = clamp(lambda', MIN_LOD, MAX_LOD). GL leaves MIN_LOD > MAX_LOD undefined; here MAX_LOD
-  // is applied last and wins, so lambda <= MAX_LOD always holds.
-  if (lambda < s.minLod8) lambda = s.minLod8;
-  if (lambda > s.maxLod8) lambda = s.maxLod8;
-  return lambda;
-}
-
-// lambda_base (8.8) of rho^2: log2Fixed(rho^2, 7) = 128 log2(rho^2) = 256 log2(rho), rounded once.
-int32_t lambdaBaseFromRho2(double rho2) {
-  if (std::isnan(rho2) || std::isinf(rho2)) return kLodMax;  // NaN / Inf: most minified (spec-choices)
-  if (rho2 == 0.0) return kLodMinusInf;  // GL: lambda = -inf for rho = 0 (also when rho^2 underflows)
-  return int32_t(log2Fixed(rho2, kLodFracBits - 1));  // |value| <= 1075 * 128 < 2^18
-}
-
-}  // namespace
-
-int32_t computeLambda(double dudx, double dvdx, double dudy, double dvdy, const SamplerQ& s, float shaderBias) {
-  // GL 4.6 §8.14.1, exact form: rho^2 = max(ux^2 + vx^2, uy^2 + vy^2) in double (no sqrt needed),
-  // lambda_base = log2(rho) = 0.5 * log2(rho^2).
-  int32_t base;
-  if (!std::isfinite(dudx) || !std::isfinite(dvdx) || !std::isfinite(dudy) || !std::isfinite(dvdy)) {
-    base = kLodMax;
-  } else {
-    const double rx = dudx * dudx + dvdx * dvdx;
-    const double ry = dudy * dudy + dvdy * dvdy;
-    base = lambdaBaseFromRho2(rx > ry ? rx : ry);
-  }
-  return finishLambda(base, s, shaderBias);
-}
-
-namespace {
-
-// ---- interval sampling (provenance mode, provenance.h) -------------------------------------------
-// The legal alternatives a GL implementation may take for one lookup, and their tolerances; each is
-// derived in docs/crosscheck.md:
-// - lambda: exact rho vs the spec's bounds max(mu, mv) <= f <= mu + mv (§8.14.1 eq. 8.7), coarse vs
-//   fine derivatives (GLSL §8.14.1), and log2 precision (1/16; llvmpipe's fast log2 errs <= 0.043);
-// - texel coordinates: a sample-position shift of 1/128 px (two implementations snapping the same
-//   vertex to neighbouring 1/256 grid points) times the coordinate derivatives, float interpolation
-//   error 2^-20 relative, and half an 8-bit weight step (implementations with exact weights);
-// - array layer: r + 1/2 within 2^-16 of an integer;
-// - unorm filtering precision: +-1 LSB when the lookup blends texels (llvmpipe's AoS 8-bit lerps).
-constexpr int32_t kLodTol8 = 16;
-constexpr double kPosTolPx = 1.0 / 128.0;
-constexpr double kCoordRel = 1.0 / 1048576.0;
-constexpr double kWeightTolTexel = 1.0 / 512.0;
-constexpr float kLayerTol = 1.0f / 65536.0f;
-
-struct Interval {
-  float lo[4], hi[4];
-  void init(const float v[4]) {
-    for (int c = 0; c < 4; ++c) lo[c] = hi[c] = v[c];
-  }
-  void add(const float v[4]) {
-    for (int c = 0; c < 4; ++c) {
-      if (v[c] < lo[c] || std::isnan(lo[c])) lo[c] = v[c];
-      if (v[c] > hi[c] || std::isnan(hi[c])) hi[c] = v[c];
-    }
-  }
-};
-
-inline bool sameValue(const float a[4], const float b[4]) { return std::memcmp(a, b, 4 * sizeof(float)) == 0; }
-
-// Candidate coordinates along one axis for one plan: both ends of the tolerance, plus every texel
-// centre inside it for LINEAR (where the piecewise-linear filter has its kinks).
-int coordCandidates(float x, double tol, const Plan& p, bool horizontal, float out[6]) {
-  int n = 0;
-  out[n++] = float(double(x) - tol);
-  out[n++] = float(double(x) + tol);
-  if (!p.linear) return n;
-  for (int l = 0; l < p.levelCount && n < 6; ++l) {
-    const double size = horizontal ? p.lv[l].w : p.lv[l].h;
-    const double a = (double(x) - tol) * size - 0.5, b = (double(x) + tol) * size - 0.5;
-    if (!(b - a < 4.0)) continue;  // NaN or huge: the two ends already stand for it
-    for (double k = std::ceil(a); k <= b && n < 6; k += 1.0) out[n++] = float((k + 0.5) / size);
-  }
-  return n;
-}
-
-// Bounds one pixel's lookup over the legal alternatives. `der` = {dsdx, dtdx, dsdy, dtdy} per
-// derivative choice (0: the oracle's, 1: the alternative), in normalized coordinates.
-void intervalPixel(const TexUnit& u, float s, float t, float r, bool array, const double der[2][4], int derCount,
-                   float bias, uint16_t& classes, Interval& iv) {
-  const TextureDesc& d = u.tex->desc;
-  const double W = double(d.width), H = double(d.height);
-  int32_t lamOracle = 0, lamLo = 0, lamHi = 0;
-  int32_t exact[2] = {0, 0};
-  for (int k = 0; k < derCount; ++k) {
-    const double ux = der[k][0] * W, vx = der[k][1] * H, uy = der[k][2] * W, vy = der[k][3] * H;
-    const double rx = ux * ux + vx * vx, ry = uy * uy + vy * vy;
-    const double mu = std::max(std::fabs(ux), std::fabs(uy)), mv = std::max(std::fabs(vx), std::fabs(vy));
-    const double lower = std::max(mu, mv), upper = mu + mv;
-    const int32_t e = lambdaBaseFromRho2(rx > ry ? rx : ry);
-    const int32_t a = lambdaBaseFromRho2(lower * lower), b = lambdaBaseFromRho2(upper * upper);
-    exact[k] = finishLambda(e, u.sampler, bias);
-    const int32_t lo = std::min({e, a, b}), hi = std::max({e, a, b});
-    const int32_t flo = finishLambda(lo == kLodMinusInf ? lo : lo - kLodTol8, u.sampler, bias);
-    const int32_t fhi = finishLambda(hi >= kLodMax ? hi : hi + kLodTol8, u.sampler, bias);
-    if (k == 0) lamOracle = exact[0], lamLo = flo, lamHi = fhi;
-    lamLo = std::min(lamLo, flo);
-    lamHi = std::max(lamHi, fhi);
-  }
-  if (derCount > 1 && exact[1] != exact[0]) classes |= kHelperDeriv;
-
-  // Lambda candidates: the ends, the oracle's, and both sides of every switch point inside
-  // (integers: level pairs and the mag/min switch at c = 0; k + 1/2: nearest-mip rounding).
-  int32_t lam[18];
-  int nl = 0;
-  lam[nl++] = lamOracle;
-  lam[nl++] = lamLo;
-  lam[nl++] = lamHi;
-  const int32_t kMaxK = int32_t(d.levels) + 1;
-  for (int32_t k = 0; k <= kMaxK && nl < 16; ++k)
-    for (int32_t off : {0, 1, 128, 129}) {
-      const int32_t v = k * 256 + off;
-      if (v > lamLo && v < lamHi && nl < 18) lam[nl++] = v;
-    }
-
-  // Layer candidates.
-  uint32_t layerOracle = 0, layerLo = 0, layerHi = 0;
-  if (array) {
-    layerOracle = selectLayer(r, d.layers);
-    layerLo = selectLayer(r - kLayerTol, d.layers);
-    layerHi = selectLayer(r + kLayerTol, d.layers);
-    if (layerLo != layerHi) classes |= kLayerTie;
-  }
-
-  const double tolS = (std::fabs(der[0][0]) + std::fabs(der[0][2])) * kPosTolPx + std::fabs(double(s)) * kCoordRel;
-  const double tolT = (std::fabs(der[0][1]) + std::fabs(der[0][3])) * kPosTolPx + std::fabs(double(t)) * kCoordRel;
-
-  float nominal[4];
-  {
-    const Plan p = makePlan(u, lamOracle);
-    sampleN(u, p, 1, &s, &t, &layerOracle, reinterpret_cast<float(*)[4]>(nominal));
-    iv.init(nominal);
-    if (isUnorm(d.format) && (p.linear || p.levelCount == 2)) classes |= kFilterPrecision;
-  }
-  for (int li = 0; li < nl; ++li) {
-    const Plan p = makePlan(u, lam[li]);
-    const LevelRef& coarse = p.lv[p.levelCount - 1];
-    const double qS = kWeightTolTexel / coarse.w, qT = kWeightTolTexel / coarse.h;
-    float sc[7], tc[7];
-    int ns = coordCandidates(s, tolS + (p.linear ? qS : 0.0), p, true, sc);
-    int nt = coordCandidates(t, tolT + (p.linear ? qT : 0.0), p, false, tc);
-    sc[ns++] = s;
-    tc[nt++] = t;
-    for (uint32_t layer = layerLo; layer <= layerHi; ++layer)
-      for (int a = 0; a < ns; ++a)
-        for (int b = 0; b < nt; ++b) {
-          float v[1][4];
-          sampleN(u, p, 1, &sc[a], &tc[b], &layer, v);
-          if (sameValue(v[0], nominal)) continue;
-          iv.add(v[0]);
-          // A class names the freedom that alone changes the value: the LOD with the nominal
-          // coordinates and layer, or the coordinates with the oracle's LOD and layer. Combinations
-          // only widen the interval.
-          const bool nominalCoords = a == ns - 1 && b == nt - 1, nominalLayer = layer == layerOracle;
-          if (lam[li] != lamOracle && nominalCoords && nominalLayer) classes |= kLodNearSwitch;
-          if (lam[li] == lamOracle && !nominalCoords && nominalLayer) classes |= kSubtexelNearHalf;
-        }
-  }
-  if (classes & kFilterPrecision) {
-    for (int c = 0; c < channelCount(d.format); ++c) {
-      iv.lo[c] = std::max(0.0f, float(double(iv.lo[c]) - 1.0 / 255.0));
-      iv.hi[c] = std::min(1.0f, float(double(iv.hi[c]) + 1.0 / 255.0));
-    }
-  }
-}
-
-// Quad lookup in provenance mode: each pixel's interval; out = lower or upper bound per pixel.
-void sampleQuadInterval(const TexUnit& u, const float s[4], const float t[4], const float* r, float bias,
-                        const double* grad, float out[4][4]) {
-  ShadeProvenance& pv = shadeProvenance();
-  for (int p = 0; p < 4; ++p) {
-    double der[2][4];
-    // 0: coarse (the oracle's) or the explicit gradient; 1: fine, per row / column of the quad.
-    if (grad) {
-      for (int k = 0; k < 4; ++k) der[0][k] = grad[k];
-    } else {
-      der[0][0] = double(s[1]) - s[0], der[0][1] = double(t[1]) - t[0];
-      der[0][2] = double(s[2]) - s[0], der[0][3] = double(t[2]) - t[0];
-    }
-    const int row = (p >> 1) * 2, col = p & 1;
-    der[1][0] = double(s[row + 1]) - s[row], der[1][1] = double(t[row + 1]) - t[row];
-    der[1][2] = double(s[2 + col]) - s[col], der[1][3] = double(t[2 + col]) - t[col];
-    Interval iv;
-    intervalPixel(u, s[p], t[p], r ? r[p] : 0.0f, r != nullptr, der, 2, bias, pv.classes[size_t(p)], iv);
-    for (int c = 0; c < 4; ++c) out[p][c] = pv.bound == SampleBound::Lo ? iv.lo[c] : iv.hi[c];
-  }
 }
 
 inline bool intervalMode(const TexUnit& u) {

@@ -1,0 +1,147 @@
+// Level of detail of the oracle's texture lookups (see sample.h for the rules; this file says why and
+// where GL says so): the sampler's LOD parameters quantized once, log2Fixed, and lambda from the scale
+// factor rho (GL 4.6 §8.14.1), all in 8.8 fixed point and integer arithmetic. The lookups that use
+// lambda are in sample.cpp; the LOD range of provenance mode is in sample_interval.cpp.
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+
+#include "raster/sample.h"
+#include "raster/sample_detail.h"
+
+namespace tessera {
+
+using sample_detail::finishLambda;
+using sample_detail::lambdaBaseFromRho2;
+using sample_detail::roundHalfEven;
+
+namespace {
+
+// A float LOD parameter to 8.8 fixed point, round half to even (docs/spec-choices.md T3: quantized once).
+// NaN maps to 0; the range is clamped to [kLodMinusInf, kLodMax].
+int32_t quantizeLod(float v) {
+  if (std::isnan(v)) return 0;
+  double x = double(v) * 256.0;  // exact
+  if (x < double(kLodMinusInf)) x = double(kLodMinusInf);
+  if (x > double(kLodMax)) x = double(kLodMax);
+  return int32_t(roundHalfEven(x));  // |x| <= 2^20
+}
+
+// 64x64 -> 128-bit product of two Q1.62 numbers, returned as Q2.62 (floor). Both branches compute
+// the same exact integer; the portable one serves compilers without __int128.
+inline uint64_t mulQ62(uint64_t a, uint64_t b) {
+#if defined(__SIZEOF_INT128__)
+  return uint64_t((static_cast<unsigned __int128>(a) * b) >> 62);
+#else
+  const uint64_t aLo = a & 0xffffffffu, aHi = a >> 32, bLo = b & 0xffffffffu, bHi = b >> 32;
+  const uint64_t ll = aLo * bLo, lh = aLo * bHi, hl = aHi * bLo, hh = aHi * bHi;
+  const uint64_t mid = (ll >> 32) + (lh & 0xffffffffu) + (hl & 0xffffffffu);
+  const uint64_t hi = hh + (lh >> 32) + (hl >> 32) + (mid >> 32);
+  const uint64_t lo = (mid << 32) | (ll & 0xffffffffu);
+  return (hi << 2) | (lo >> 62);
+#endif
+}
+
+}  // namespace
+
+SamplerQ SamplerQ::from(const SamplerState& s) {
+  SamplerQ q;
+  q.state = s;
+  q.minLod8 = quantizeLod(s.minLod);
+  q.maxLod8 = quantizeLod(s.maxLod);
+  q.bias8 = quantizeLod(s.lodBias);
+  return q;
+}
+
+int64_t log2Fixed(double x, int fracBits) {
+  // Fraction bits of the documented intermediate.
+  constexpr int kBits = 24;
+  if (!(x > 0.0)) return std::numeric_limits<int64_t>::min();  // log2 of 0 / negative / NaN
+  if (std::isinf(x)) return std::numeric_limits<int64_t>::max();
+  if (fracBits < 0) fracBits = 0;
+  // x = m * 2^e with m in [1, 2), read from the IEEE-754 bits; m in Q1.62 (exact: 53 bits).
+  uint64_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  const int biased = int(bits >> 52) & 0x7ff;
+  uint64_t mant = bits & ((uint64_t(1) << 52) - 1);
+  int e;
+  uint64_t m;
+  if (biased != 0) {  // normal
+    e = biased - 1023;
+    m = (mant | (uint64_t(1) << 52)) << 10;
+  } else {  // subnormal: mant * 2^-1074 with the leading one at bit p
+    const int p = 63 - std::countl_zero(mant);
+    e = p - 1074;
+    m = mant << (62 - p);
+  }
+  // log2(m) bit by bit: square m; if m^2 >= 2 the next bit is 1 and m^2 is halved. Each step
+  // truncates at 2^-62, so the bits are those of floor(2^k * log2(m)) up to an error < 2^-36 units
+  // of the 24th bit (exact for m = 1, i.e. for powers of two).
+  //
+  // Rounding: the spec rounds the 24-bit intermediate T = floor(2^24 log2 x) to fracBits bits. The
+  // first fracBits + 1 steps of the loop compute exactly the top bits P = T >> (23 - fracBits), and
+  // (T + 2^(23 - fracBits)) >> (24 - fracBits) == (P + 1) >> 1 for every T, so the loop stops after
+  // fracBits + 1 steps with a bit-identical result (8 steps instead of 24 for lambda).
+  // Round half up is right here: log2 of a double is an integer or irrational, so the exact value
+  // is never a tie, and a truncated value whose dropped bits read exactly 1/2 lies above the
+  // half-way point. The result is floor(2^fracBits * log2(x) + 1/2) = round-half-even of the exact
+  // value.
+  const int steps = fracBits < kBits ? fracBits + 1 : kBits;
+  int64_t f = 0;
+  for (int k = 0; k < steps; ++k) {
+    m = mulQ62(m, m);  // Q2.62, < 4
+    f <<= 1;
+    if (m >= (uint64_t(1) << 63)) {
+      f |= 1;
+      m >>= 1;
+    }
+  }
+  // floor(2^steps * log2 x); beyond 24 bits the result is only shifted (24 bits are computed).
+  const int64_t floorValue = int64_t(e) * (int64_t(1) << steps) + f;
+  if (fracBits >= kBits) return floorValue * (int64_t(1) << (fracBits - kBits));
+  return (floorValue + 1) >> 1;  // arithmetic shift: floor division
+}
+
+namespace sample_detail {
+
+// lambda' and lambda from lambda_base (8.8): GL 4.6 §8.14.1, eq. 8.6 - 8.8.
+int32_t finishLambda(int32_t base, const SamplerQ& s, float shaderBias) {
+  // lambda' = lambda_base + clamp(bias_texobj + bias_shader, -MAX_TEXTURE_LOD_BIAS, +MAX_TEXTURE_LOD_BIAS).
+  constexpr int32_t kMaxBias8 = int32_t(kMaxLodBias * 256.0f);
+  int32_t bias = s.bias8 + quantizeLod(shaderBias);
+  if (bias < -kMaxBias8) bias = -kMaxBias8;
+  if (bias > kMaxBias8) bias = kMaxBias8;
+  int32_t lambda = base + bias;
+  // lambda = clamp(lambda', MIN_LOD, MAX_LOD). GL leaves MIN_LOD > MAX_LOD undefined; here MAX_LOD
+  // is applied last and wins, so lambda <= MAX_LOD always holds.
+  if (lambda < s.minLod8) lambda = s.minLod8;
+  if (lambda > s.maxLod8) lambda = s.maxLod8;
+  return lambda;
+}
+
+// lambda_base (8.8) of rho^2: log2Fixed(rho^2, 7) = 128 log2(rho^2) = 256 log2(rho), rounded once.
+int32_t lambdaBaseFromRho2(double rho2) {
+  if (std::isnan(rho2) || std::isinf(rho2)) return kLodMax;  // NaN / Inf: most minified (spec-choices T18)
+  if (rho2 == 0.0) return kLodMinusInf;  // GL: lambda = -inf for rho = 0 (also when rho^2 underflows)
+  return int32_t(log2Fixed(rho2, kLodFracBits - 1));  // |value| <= 1075 * 128 < 2^18
+}
+
+}  // namespace sample_detail
+
+int32_t computeLambda(double dudx, double dvdx, double dudy, double dvdy, const SamplerQ& s, float shaderBias) {
+  // GL 4.6 §8.14.1, exact form: rho^2 = max(ux^2 + vx^2, uy^2 + vy^2) in double (no sqrt needed),
+  // lambda_base = log2(rho) = 0.5 * log2(rho^2).
+  int32_t base;
+  if (!std::isfinite(dudx) || !std::isfinite(dvdx) || !std::isfinite(dudy) || !std::isfinite(dvdy)) {
+    base = kLodMax;
+  } else {
+    const double rx = dudx * dudx + dvdx * dvdx;
+    const double ry = dudy * dudy + dvdy * dvdy;
+    base = lambdaBaseFromRho2(rx > ry ? rx : ry);
+  }
+  return finishLambda(base, s, shaderBias);
+}
+
+}  // namespace tessera
