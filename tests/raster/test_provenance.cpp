@@ -1,23 +1,277 @@
-// Provenance mode: the same bytes as the fast path, plus intervals that always contain the value.
+// Provenance mode: the same bytes as the fast path, plus per-pixel intervals and ambiguity classes
+// (raster/provenance.h, docs/crosscheck.md) that match what the geometry of the frame allows.
+//
+// Small frames whose freedoms are known by construction pin the class model pixel by pixel: no
+// freedom gives an unclassed, zero-width pixel; an edge through a pixel centre gives EDGE_TIE; a
+// blended write gives BLEND_PRECISION with the +-2.5 LSB tolerance of docs/crosscheck.md; a NEAREST
+// lookup at a texel boundary gives SUBTEXEL_NEAR_HALF only where the two texels differ. On every
+// built-in scene, "unclassed" and "zero-width interval" must be the same set of pixels (the judge
+// relies on it), and two scenes get class counts derived from their geometry.
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
 
 #include "raster/provenance.h"
 #include "tests/raster/render_helpers.h"
+#include "tools/scenes/builder.h"
 #include "tools/scenes/scenes.h"
 
 using namespace tessera;
+using namespace tessera::scenes;
+
+namespace {
+
+// One presented image in provenance mode, addressed in GL window coordinates (x right, y up).
+struct ProvImage {
+  int w = 0, h = 0, channels = 0;
+  std::vector<uint8_t> v, lo, hi;  // top-down, imagePixels() layout
+  std::vector<uint16_t> cls;       // bottom row first, as Provenance stores it
+  uint8_t val(int x, int y, int c = 0) const { return v[(size_t(h - 1 - y) * w + x) * 4 + c]; }
+  uint8_t low(int x, int y, int c = 0) const { return lo[(size_t(h - 1 - y) * w + x) * 4 + c]; }
+  uint8_t high(int x, int y, int c = 0) const { return hi[(size_t(h - 1 - y) * w + x) * 4 + c]; }
+  uint16_t classes(int x, int y) const { return cls[size_t(y) * w + x]; }
+  bool exact(int x, int y) const {
+    for (int c = 0; c < 4; ++c)
+      if (low(x, y, c) != val(x, y, c) || high(x, y, c) != val(x, y, c)) return false;
+    return true;
+  }
+};
+
+ProvImage renderProvenance(const CommandList& cl, size_t image = 0) {
+  CpuBackend b(RenderOptions{2, true});
+  b.execute(cl, "provenance test");
+  const PresentedImage p = b.presented().at(image);
+  const TextureData& t = *b.texture(p.texture);
+  EXPECT_EQ(t.desc.format, Format::RGBA8);
+  ProvImage r;
+  r.w = int(levelWidth(t.desc, p.level));
+  r.h = int(levelHeight(t.desc, p.level));
+  r.v = imagePixels(t, p.level, p.layer);
+  r.lo = imagePixels(*t.prov->lo, p.level, p.layer);
+  r.hi = imagePixels(*t.prov->hi, p.level, p.layer);
+  const auto& all = t.prov->classes[p.level];
+  r.cls.assign(all.begin() + ptrdiff_t(size_t(p.layer) * r.w * r.h),
+               all.begin() + ptrdiff_t(size_t(p.layer + 1) * r.w * r.h));
+  return r;
+}
+
+// A 16 x 16 RGBA8 frame cleared to 0, orthographic in pixel units, flat_color 0.25 (63.75 in bytes:
+// not near a rounding tie), optionally with additive blending.
+CommandList flatFrame(const Mesh& m, bool additive, int draws = 1) {
+  CommandList cl;
+  RenderTarget t;
+  t.color[0] = createTarget(cl, Format::RGBA8, 16, 16);
+  cl.setRenderTarget(t);
+  cl.setViewport({0, 0, 16, 16});
+  cl.clearColor(0, {0, 0, 0, 0});
+  const uint32_t n = bindMesh(cl, m);
+  cl.useProgram(cl.createProgram("flat_color"));
+  setMatrix(cl, 0, ortho(0, 16, 0, 16, -1, 1));
+  setVec4(cl, 4, {0.25f, 0.25f, 0.25f, 0.25f});
+  if (additive) {
+    BlendState b;
+    b.enabled = true;
+    b.srcRgb = b.dstRgb = b.srcAlpha = b.dstAlpha = BlendFactor::One;
+    cl.setBlendState(b);
+  }
+  for (int i = 0; i < draws; ++i) cl.drawIndexed(0, n);
+  return cl;
+}
+
+Mesh square(float x0, float y0, float x1, float y1) {
+  Mesh m;
+  m.quad({x0, y0, 0}, {x1, y0, 0}, {x1, y1, 0}, {x0, y1, 0}, {}, {}, {}, {});
+  return m;
+}
+
+}  // namespace
+
+TEST(ProvenanceClasses, ARectangleOnPixelCornersLeavesEveryPixelUnclassedAndExact) {
+  // [4, 12] x [4, 10]: every side lies half a pixel from the nearest centre and the diagonal that
+  // splits it (slope 3/4: 4 (y - 4) - 3 (x - 4) = 0 has no half-integer solution) at least 0.1 px, far
+  // beyond the tie margin of sqrt(2)/256 px; the colour is constant and nothing blends: GL has no
+  // choice anywhere. (A square would put its diagonal through the centres (k + 1/2, k + 1/2).)
+  const ProvImage p = renderProvenance(flatFrame(square(4, 4, 12, 10), false));
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) {
+      const bool inside = x >= 4 && x < 12 && y >= 4 && y < 10;
+      ASSERT_EQ(p.classes(x, y), 0) << x << "," << y;
+      ASSERT_TRUE(p.exact(x, y)) << x << "," << y;
+      ASSERT_EQ(p.val(x, y), inside ? 64 : 0) << x << "," << y;
+    }
+}
+
+TEST(ProvenanceClasses, EdgesThroughPixelCentresAreTiesAndNothingElseIs) {
+  // The square [2.5, 10.5]^2 (two triangles split along the diagonal from (2.5, 2.5) to (10.5, 10.5)):
+  // its four sides run through the centres of columns / rows 2 and 10, and the diagonal through the
+  // centres (k, k). Those 9 * 4 - 4 + 7 = 39 pixels are ties: the fill convention (left and bottom
+  // in) decides them, another implementation may decide otherwise, so their interval must hold both
+  // the clear value 0 and the colour 64. Every other pixel is at least half a pixel from every edge.
+  const ProvImage p = renderProvenance(flatFrame(square(2.5f, 2.5f, 10.5f, 10.5f), false));
+  int classed = 0;
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) {
+      const bool inRange = x >= 2 && x <= 10 && y >= 2 && y <= 10;
+      const bool onSide = inRange && (x == 2 || x == 10 || y == 2 || y == 10);
+      const bool onDiagonal = inRange && x == y;
+      const bool covered = x >= 2 && x < 10 && y >= 2 && y < 10;
+      ASSERT_EQ(p.val(x, y), covered ? 64 : 0) << x << "," << y;
+      if (onSide || onDiagonal) {
+        ++classed;
+        ASSERT_EQ(p.classes(x, y), kEdgeTie) << x << "," << y;
+        for (int c = 0; c < 4; ++c) {
+          ASSERT_EQ(p.low(x, y, c), 0) << x << "," << y;
+          ASSERT_EQ(p.high(x, y, c), 64) << x << "," << y;
+        }
+      } else {
+        ASSERT_EQ(p.classes(x, y), 0) << x << "," << y;
+        ASSERT_TRUE(p.exact(x, y)) << x << "," << y;
+      }
+    }
+  EXPECT_EQ(classed, 39);
+}
+
+TEST(ProvenanceClasses, ABlendedWriteCarriesTheDerivedToleranceAndPropagatesIntoTheNextBlend) {
+  // Additive blending of 0.25 onto 0: exact result 63.75 LSB, widened by the 2.5 LSB blend tolerance
+  // to [61.25, 66.25], i.e. bytes 61..66. A second identical draw blends 0.25 onto that interval:
+  // 63.75 + [61, 66] = [124.75, 129.75], widened to [122.25, 132.25]: bytes 122..132, value 128.
+  // The rectangle of the test above has no edge tie, so the only class is BLEND_PRECISION.
+  for (int draws : {1, 2}) {
+    const ProvImage p = renderProvenance(flatFrame(square(4, 4, 12, 10), true, draws));
+    for (int y = 0; y < 16; ++y)
+      for (int x = 0; x < 16; ++x) {
+        const bool inside = x >= 4 && x < 12 && y >= 4 && y < 10;
+        if (!inside) {
+          ASSERT_EQ(p.classes(x, y), 0) << x << "," << y;
+          ASSERT_TRUE(p.exact(x, y)) << x << "," << y;
+          ASSERT_EQ(p.val(x, y), 0) << x << "," << y;
+          continue;
+        }
+        ASSERT_EQ(p.classes(x, y), kBlendPrecision) << x << "," << y << " after " << draws << " draws";
+        for (int c = 0; c < 4; ++c) {
+          ASSERT_EQ(p.val(x, y, c), draws == 1 ? 64 : 128) << x << "," << y;
+          ASSERT_EQ(p.low(x, y, c), draws == 1 ? 61 : 122) << x << "," << y << " after " << draws << " draws";
+          ASSERT_EQ(p.high(x, y, c), draws == 1 ? 66 : 132) << x << "," << y << " after " << draws << " draws";
+        }
+      }
+  }
+}
+
+namespace {
+// A 16 x 12 frame filled by one "textured" quad (identity MVP, full viewport) sampling a 4 x 4
+// texture with NEAREST filters: columns 0-1 red, columns 2-3 blue, so the texture changes only at
+// s = 0.5 (and at the REPEAT seam s = 0 / 1). Texcoords run from sOffset to 1 + sOffset across the
+// quad, so pixel column x samples s = (x + 0.5) / 16 + sOffset: 4 pixels per texel across, 3 down
+// (magnification, lambda = log2(1/3), far from the mag/min switch at 0). 16 x 12 rather than square
+// keeps the quad's diagonal (slope 3/4) off every pixel centre.
+CommandList nearestFrame(float sOffset) {
+  CommandList cl;
+  RenderTarget t;
+  t.color[0] = createTarget(cl, Format::RGBA8, 16, 12);
+  cl.setRenderTarget(t);
+  cl.setViewport({0, 0, 16, 12});
+  cl.clearColor(0, {0, 0, 0, 0});
+  Image img;
+  img.width = img.height = 4;
+  img.rgba.resize(4 * 4 * 4);
+  for (uint32_t y = 0; y < 4; ++y)
+    for (uint32_t x = 0; x < 4; ++x)
+      img.set(x, y, x < 2 ? std::array<uint8_t, 4>{255, 0, 0, 255} : std::array<uint8_t, 4>{0, 0, 255, 255});
+  cl.bindTexture(0, uploadTexture(cl, img, false));
+  SamplerState s;
+  s.minFilter = Filter::Nearest;
+  s.magFilter = Filter::Nearest;
+  cl.bindSampler(0, cl.createSampler(s));
+  Mesh m;
+  const float s0 = sOffset, s1 = 1.0f + sOffset;
+  m.quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, {s0, 0, 0, 0}, {s1, 0, 0, 0}, {s1, 1, 0, 0}, {s0, 1, 0, 0});
+  const uint32_t n = bindMesh(cl, m);
+  cl.useProgram(cl.createProgram("textured"));
+  setMatrix(cl, 0, Mat4::identity());
+  setTexturedDefaults(cl);
+  cl.drawIndexed(0, n);
+  return cl;
+}
+}  // namespace
+
+TEST(ProvenanceClasses, ANearestSampledFlatRegionHasZeroWidthIntervals) {
+  // sOffset = 0: the texel boundaries s = k / 4 fall on pixel edges (x = 4k), every centre is 1/8 texel
+  // from the nearest boundary, far beyond the 1/128 px position tolerance; t is uniform per texture
+  // column. Nothing is classed.
+  const ProvImage p = renderProvenance(nearestFrame(0.0f));
+  for (int y = 0; y < 12; ++y)
+    for (int x = 0; x < 16; ++x) {
+      ASSERT_EQ(p.classes(x, y), 0) << x << "," << y;
+      ASSERT_TRUE(p.exact(x, y)) << x << "," << y;
+      ASSERT_EQ(p.val(x, y, 0), x < 8 ? 255 : 0) << x << "," << y;
+      ASSERT_EQ(p.val(x, y, 2), x < 8 ? 0 : 255) << x << "," << y;
+    }
+}
+
+TEST(ProvenanceClasses, ANearestLookupOnATexelBoundaryIsClassedOnlyWhereTheTexelsDiffer) {
+  // sOffset = 1/32 moves every texel boundary onto a pixel centre: column x samples s = (x + 1) / 16,
+  // so columns 3, 7, 11 and 15 sit exactly on s = 1/4, 1/2, 3/4 and 1. Only at s = 1/2 (red | blue)
+  // and s = 1 (blue | red across the REPEAT seam) do the two candidate texels differ: those columns
+  // are SUBTEXEL_NEAR_HALF with an interval covering both colours. At s = 1/4 and 3/4 both texels
+  // have the same colour, so the freedom changes nothing and the pixel stays unclassed and exact.
+  // The quad neighbours of columns 7 and 15 (columns 6 and 14) may carry OUTPUT_ROUNDING: the output
+  // tolerance is the quad's own output gradient / 128 px, and the colour may change inside that quad.
+  const ProvImage p = renderProvenance(nearestFrame(1.0f / 32.0f));
+  for (int y = 0; y < 12; ++y)
+    for (int x = 0; x < 16; ++x) {
+      const uint16_t c = p.classes(x, y);
+      if (x == 7 || x == 15) {
+        ASSERT_NE(c & kSubtexelNearHalf, 0) << x << "," << y;
+        ASSERT_EQ(c & ~(kSubtexelNearHalf | kOutputRounding), 0) << x << "," << y << " classes " << c;
+        EXPECT_EQ(p.low(x, y, 0), 0) << x << "," << y;
+        EXPECT_EQ(p.high(x, y, 0), 255) << x << "," << y;
+        EXPECT_EQ(p.low(x, y, 2), 0) << x << "," << y;
+        EXPECT_EQ(p.high(x, y, 2), 255) << x << "," << y;
+        continue;
+      }
+      const bool red = x < 7;  // columns 8-14 sample s in (1/2, 1): blue
+      ASSERT_EQ(p.val(x, y, 0), red ? 255 : 0) << x << "," << y;
+      ASSERT_EQ(p.val(x, y, 2), red ? 0 : 255) << x << "," << y;
+      if (x == 6 || x == 14) {
+        ASSERT_EQ(c & ~kOutputRounding, 0) << x << "," << y << " classes " << c;
+        continue;
+      }
+      ASSERT_EQ(c, 0) << x << "," << y;
+      ASSERT_TRUE(p.exact(x, y)) << x << "," << y;
+    }
+}
+
+// ---- the built-in scenes ----
 
 class ProvenanceMode : public ::testing::TestWithParam<std::string> {};
 
-TEST_P(ProvenanceMode, ValuesMatchTheFastPathAndLieInsideTheirIntervals) {
+// Scenes where the oracle leaves some pixels unclassed although their interval is wider than the
+// value (reported, not yet fixed in raster/):
+// - blend: an output exactly on a rounding tie (the background's interpolated alpha hits 127.5) gets
+//   both neighbours in its interval, but OUTPUT_ROUNDING is only set when the tolerance widens the
+//   range beyond that, so the pixel keeps no class (rast_provenance.cpp, updateUnorm).
+// - layered_target: pass 2 samples the atlas rendered in pass 1 through its interval images, so the
+//   atlas texels' +-1 LSB (FILTER_PRECISION) reaches the presented pixels, but the texels' classes do
+//   not (sample.cpp, levelRef reads the bounds; nothing ORs the texel classes in).
+// For these the test checks what the gap is instead of the strict rule.
+
+TEST_P(ProvenanceMode, ValuesMatchTheFastPathAndAPixelIsUnclassedExactlyWhenItsIntervalIsOneValue) {
   const scenes::SceneInfo* info = scenes::find(GetParam());
   const CommandList cl = scenes::build(info->name, info->width, info->height);
   const auto fast = tessera::testing::renderList(cl, 2);
   CpuBackend b(RenderOptions{2, true});
   b.execute(cl, GetParam());
+  // layered_target's atlas: its only array texture, rendered in pass 1.
+  const TextureData* atlas = nullptr;
+  for (const Command& c : cl.commands())
+    if (const auto* ct = std::get_if<CreateTexture>(&c); ct && ct->desc.kind == TextureKind::Tex2DArray && !atlas)
+      atlas = b.texture(ct->id);
   const auto images = b.presented();
   ASSERT_EQ(images.size(), fast.hashes.size());
-  size_t classed = 0, pixels = 0;
   for (size_t i = 0; i < images.size(); ++i) {
     const TextureData& t = *b.texture(images[i].texture);
     EXPECT_EQ(imageSha256(t, images[i].level, images[i].layer), fast.hashes[i]) << "provenance changed the bytes";
@@ -25,15 +279,71 @@ TEST_P(ProvenanceMode, ValuesMatchTheFastPathAndLieInsideTheirIntervals) {
     const auto v = imagePixels(t, images[i].level, images[i].layer);
     const auto lo = imagePixels(*t.prov->lo, images[i].level, images[i].layer);
     const auto hi = imagePixels(*t.prov->hi, images[i].level, images[i].layer);
-    if (isUnorm(t.desc.format)) {
-      for (size_t k = 0; k < v.size(); ++k) {
-        ASSERT_LE(lo[k], v[k]) << "byte " << k;
-        ASSERT_GE(hi[k], v[k]) << "byte " << k;
+    const uint32_t w = levelWidth(t.desc, images[i].level), h = levelHeight(t.desc, images[i].level);
+    const size_t bpt = texelBytes(t.desc.format);
+    const int channels = channelCount(t.desc.format);
+    ASSERT_EQ(v.size(), size_t(w) * h * bpt);
+    const auto& cls = t.prov->classes[images[i].level];
+    ASSERT_EQ(cls.size(), size_t(t.desc.layers) * w * h);
+    // Each channel's value and bounds as doubles (unorm bytes, float or uint words).
+    auto channel = [&](const std::vector<uint8_t>& img, size_t px, int c) {
+      const uint8_t* p = &img[px * bpt];
+      if (isUnorm(t.desc.format)) return double(p[c]);
+      if (isFloat(t.desc.format)) {
+        float f;
+        std::memcpy(&f, p + 4 * c, 4);
+        return double(f);
       }
-    }
-    for (uint16_t c : t.prov->classes[images[i].level]) classed += c != 0, ++pixels;
+      uint32_t u;
+      std::memcpy(&u, p + 4 * c, 4);
+      return double(u);
+    };
+    for (uint32_t y = 0; y < h; ++y)
+      for (uint32_t x = 0; x < w; ++x) {
+        const size_t px = size_t(y) * w + x;  // top-down
+        const uint16_t c = cls[(size_t(images[i].layer) * h + (h - 1 - y)) * w + x];
+        bool zeroWidth = true;
+        for (int k = 0; k < channels; ++k) {
+          const double l = channel(lo, px, k), val = channel(v, px, k), u = channel(hi, px, k);
+          ASSERT_LE(l, val) << "image " << i << " pixel " << x << "," << y << " channel " << k;
+          ASSERT_GE(u, val) << "image " << i << " pixel " << x << "," << y << " channel " << k;
+          zeroWidth = zeroWidth && l == val && u == val;
+        }
+        // The judge accepts a differing pixel iff it lies in the interval; docs/crosscheck.md promises
+        // that an unclassed pixel must match bit for bit. Both hold only if the two sets agree.
+        if (c != 0) {
+          ASSERT_FALSE(zeroWidth) << "image " << i << " pixel " << x << "," << y << " is classed " << c
+                                  << " but its interval is one value";
+        } else if (GetParam() == "blend") {
+          // Known gap (see above): a tie widens by one LSB at most.
+          for (int k = 0; k < channels; ++k) {
+            ASSERT_GE(channel(lo, px, k), channel(v, px, k) - 1.0) << "image " << i << " pixel " << x << "," << y;
+            ASSERT_LE(channel(hi, px, k), channel(v, px, k) + 1.0) << "image " << i << " pixel " << x << "," << y;
+          }
+        } else if (GetParam() == "layered_target") {
+          // Known gap (see above): pass 2 shows atlas texel (x mod 128, row) of layer x / 128 one to one
+          // (NEAREST, texel centres on pixel centres, the program copies the texel), so an unclassed
+          // pixel carries exactly that texel's interval, and it is wide only where the texel is classed.
+          ASSERT_NE(atlas, nullptr);
+          const uint32_t layer = x / 128, ax = x % 128, ay = h - 1 - y;  // atlas rows bottom first
+          const uint8_t* av = atlas->texel(0, layer, ax, ay);
+          const uint8_t* al = atlas->prov->lo->texel(0, layer, ax, ay);
+          const uint8_t* ah = atlas->prov->hi->texel(0, layer, ax, ay);
+          for (int k = 0; k < channels; ++k) {
+            ASSERT_EQ(channel(v, px, k), double(av[k])) << "pixel " << x << "," << y << " is not its atlas texel";
+            ASSERT_EQ(channel(lo, px, k), double(al[k])) << "pixel " << x << "," << y;
+            ASSERT_EQ(channel(hi, px, k), double(ah[k])) << "pixel " << x << "," << y;
+          }
+          if (!zeroWidth) {
+            ASSERT_NE(atlas->prov->classes[0][(size_t(layer) * 128 + ay) * 128 + ax], 0)
+                << "pixel " << x << "," << y << " shows an unclassed atlas texel with a wide interval";
+          }
+        } else {
+          ASSERT_TRUE(zeroWidth) << "image " << i << " pixel " << x << "," << y
+                                 << " is unclassed but its interval is wider than its value";
+        }
+      }
   }
-  std::printf("%s: %zu of %zu pixels classed\n", GetParam().c_str(), classed, pixels);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllScenes, ProvenanceMode, ::testing::ValuesIn([] {
@@ -42,3 +352,126 @@ INSTANTIATE_TEST_SUITE_P(AllScenes, ProvenanceMode, ::testing::ValuesIn([] {
                            return names;
                          }()),
                          [](const auto& param) { return param.param; });
+
+namespace {
+// Twice the signed area of (a, b, p) in doubled coordinates: zero iff p lies on the line through a, b.
+int64_t cross2(int64_t ax, int64_t ay, int64_t bx, int64_t by, int64_t px, int64_t py) {
+  return (bx - ax) * (py - ay) - (by - ay) * (px - ax);
+}
+
+// The edges of one fill_fan fan in doubled pixel coordinates (the scene's fan(): centre (cx, cy), rim
+// walking the square of half-size r counter-clockwise in steps of `step` pixels).
+struct Segment {
+  int64_t ax, ay, bx, by;
+};
+void fanEdges(int64_t cx2, int64_t cy2, int r, int step, std::vector<Segment>& out) {
+  std::vector<std::array<int64_t, 2>> rim;
+  for (int i = -r; i < r; i += step) rim.push_back({cx2 + 2 * i, cy2 - 2 * r});
+  for (int i = -r; i < r; i += step) rim.push_back({cx2 + 2 * r, cy2 + 2 * i});
+  for (int i = r; i > -r; i -= step) rim.push_back({cx2 + 2 * i, cy2 + 2 * r});
+  for (int i = r; i > -r; i -= step) rim.push_back({cx2 - 2 * r, cy2 + 2 * i});
+  for (size_t i = 0; i < rim.size(); ++i) {
+    const auto& a = rim[i];
+    const auto& b = rim[(i + 1) % rim.size()];
+    out.push_back({cx2, cy2, a[0], a[1]});
+    out.push_back({a[0], a[1], b[0], b[1]});
+  }
+}
+// Distance in pixels from the centre of pixel (x, y) to the segment.
+double distanceToSegment(const Segment& s, int x, int y) {
+  const double px = double(2 * x + 1), py = double(2 * y + 1);
+  const double dx = double(s.bx - s.ax), dy = double(s.by - s.ay);
+  double t = ((px - double(s.ax)) * dx + (py - double(s.ay)) * dy) / (dx * dx + dy * dy);
+  t = std::clamp(t, 0.0, 1.0);
+  const double ex = double(s.ax) + t * dx - px, ey = double(s.ay) + t * dy - py;
+  return std::sqrt(ex * ex + ey * ey) / 2.0;
+}
+}  // namespace
+
+TEST(ProvenanceScenes, FillFanClassesExactlyTheFansAndTheirRightAndTopNearMisses) {
+  // fill_fan at 128 x 128: fan A centred on (32.5, 64.5), fan B on (96, 64), both of half-size
+  // r = min(128/4, 128/2) - 3 = 29, drawn with additive blending (0.25 per hit).
+  // - Every pixel a fan covers is a blended write: BLEND_PRECISION. Fan A's square [3.5, 61.5] x
+  //   [35.5, 93.5] has its sides on pixel centres: it covers columns 3..60 and rows 35..92 (58 x 58,
+  //   left / bottom in), and its right column 61 and top row 93 are near misses (the centre lies on the
+  //   edge, so another fill convention covers them): classed too, 59 x 59 in all. Fan B's square
+  //   [67, 125] x [35, 93] lies on pixel corners: 58 x 58 covered, no near miss (0.5 px away).
+  // - Classed pixels: exactly 59^2 + 58^2 = 6845. The rest is the clear colour, exact.
+  // - EDGE_TIE: set on every pixel whose centre lies exactly on a fan edge (exact integer test), and on
+  //   no pixel whose centre is more than twice the tie margin (sqrt(2)/256 px) from every edge.
+  const ProvImage p = renderProvenance(scenes::build("fill_fan", 128, 128));
+  std::vector<Segment> edges;
+  fanEdges(65, 129, 29, 3, edges);   // fan A: centre (32.5, 64.5) doubled
+  fanEdges(192, 128, 29, 5, edges);  // fan B: centre (96, 64) doubled
+  const double kFar = 2.0 * 1.4142135623730951 / 256.0;
+  int classed = 0, onEdge = 0;
+  for (int y = 0; y < 128; ++y)
+    for (int x = 0; x < 128; ++x) {
+      const bool fanA = x >= 3 && x <= 61 && y >= 35 && y <= 93;
+      const bool fanB = x >= 67 && x <= 124 && y >= 35 && y <= 92;
+      const uint16_t c = p.classes(x, y);
+      classed += c != 0;
+      if (!fanA && !fanB) {
+        ASSERT_EQ(c, 0) << x << "," << y;
+        ASSERT_TRUE(p.exact(x, y)) << x << "," << y;
+        ASSERT_EQ(p.val(x, y), 0) << x << "," << y;
+        continue;
+      }
+      ASSERT_NE(c & kBlendPrecision, 0) << x << "," << y;
+      ASSERT_EQ(c & ~(kBlendPrecision | kEdgeTie), 0) << x << "," << y << " classes " << c;
+      bool exactlyOn = false;
+      double nearest = 1e9;
+      for (const Segment& s : edges) {
+        const int64_t px = 2 * x + 1, py = 2 * y + 1;
+        const bool within = px >= std::min(s.ax, s.bx) && px <= std::max(s.ax, s.bx) && py >= std::min(s.ay, s.by) &&
+                            py <= std::max(s.ay, s.by);
+        exactlyOn = exactlyOn || (within && cross2(s.ax, s.ay, s.bx, s.by, px, py) == 0);
+        nearest = std::min(nearest, distanceToSegment(s, x, y));
+      }
+      onEdge += exactlyOn;
+      if (exactlyOn) {
+        ASSERT_NE(c & kEdgeTie, 0) << x << "," << y << " lies on a fan edge";
+        EXPECT_EQ(p.low(x, y), 0) << x << "," << y << ": another convention may leave it uncovered";
+        EXPECT_GE(p.high(x, y), 64) << x << "," << y << ": another convention may cover it";
+      } else if (nearest > kFar) {
+        ASSERT_EQ(c, kBlendPrecision) << x << "," << y << " is " << nearest << " px from every edge";
+        // One hit of 0.25: 63.75 +- 2.5 LSB.
+        ASSERT_EQ(p.val(x, y), 64) << x << "," << y;
+        ASSERT_EQ(p.low(x, y), 61) << x << "," << y;
+        ASSERT_EQ(p.high(x, y), 66) << x << "," << y;
+      }
+    }
+  EXPECT_EQ(classed, 59 * 59 + 58 * 58);
+  EXPECT_GT(onEdge, 4 * 58) << "fan A's four sides alone put 4 x 58 centres on edges, its spokes more";
+}
+
+TEST(ProvenanceScenes, BlendClassesEveryPixelOfTheTwentyBlendedQuadsAndNoEdgeTies) {
+  // blend at 256 x 128, ortho 5 x 4 units: 51.2 px per unit across, 32 down. Quad (i, j) spans
+  // [i + 0.1, i + 0.9] x [j + 0.1, j + 0.9] units = [51.2 i + 5.12, 51.2 i + 46.08] x [32 j + 3.2,
+  // 32 j + 28.8] px: the centres of columns 51.2 i + 5.12 <= x + 0.5 < 51.2 i + 46.08 (5..45, 56..96,
+  // 108..147, 159..199, 210..250: 41 + 41 + 40 + 41 + 41 = 204) and rows 3..28 (+ 32 j, 26 each). Every side is at
+  // least 0.12 px from the nearest centre and the background's diagonal (y = x / 2) at least 0.5 / sqrt(5) px, far
+  // beyond the tie margin: no EDGE_TIE anywhere. Every covered pixel is a blended write, which is never exact (+-2.5
+  // LSB): BLEND_PRECISION on exactly those pixels; the background outside can only carry OUTPUT_ROUNDING (it is
+  // interpolated).
+  const ProvImage p = renderProvenance(scenes::build("blend", 256, 128));
+  int blended = 0, expected = 0;
+  for (int y = 0; y < 128; ++y)
+    for (int x = 0; x < 256; ++x) {
+      const double cx = x + 0.5, cy = y + 0.5;
+      const int i = int(cx / 51.2), j = int(cy / 32.0);
+      const double ux = cx - 51.2 * i, uy = cy - 32.0 * j;
+      const bool inQuad = ux >= 5.12 && ux < 46.08 && uy >= 3.2 && uy < 28.8;
+      const uint16_t c = p.classes(x, y);
+      expected += inQuad;
+      blended += (c & kBlendPrecision) != 0;
+      ASSERT_EQ(c & kEdgeTie, 0) << x << "," << y;
+      if (inQuad) {
+        ASSERT_NE(c & kBlendPrecision, 0) << x << "," << y;
+      } else {
+        ASSERT_EQ(c & ~kOutputRounding, 0) << x << "," << y << " classes " << c;
+      }
+    }
+  EXPECT_EQ(expected, 204 * 26 * 4);
+  EXPECT_EQ(blended, expected);
+}
