@@ -10,6 +10,7 @@
 #include "mta/scene.h"
 #include "mta/texel_ratio.h"
 #include "raster/image_io.h"
+#include "base/image_diff.h"
 #include "base/sha256.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/frame_job.h"
@@ -129,23 +130,17 @@ struct ImageError {
   double withinTolerance = 1.0;
 };
 
+// The atlas tree's frame `a` against the original textures' frame `b`, both RGBA8: PSNR over R, G and B
+// (alpha is not compared) with peak 255, and the share of pixels whose RGB channels all differ by at
+// most `tolerance` steps (base/image_diff.h).
 ImageError imageError(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, int tolerance) {
-  double se = 0.0;
-  uint64_t within = 0;
-  const size_t n = a.size() / 4;
-  for (size_t i = 0; i < n; ++i) {
-    int worst = 0;
-    for (int k = 0; k < 3; ++k) {
-      const int d = int(a[i * 4 + k]) - int(b[i * 4 + k]);
-      se += double(d * d);
-      worst = std::max(worst, d < 0 ? -d : d);
-    }
-    within += worst <= tolerance ? 1 : 0;
-  }
+  ImageDiffRules rules;
+  rules.peak = 255.0;
+  rules.tolerance = double(tolerance);
+  const ImageDiff d = diffPixels(a, b, DiffChannelType::UInt8, 4, rules, 3);
   ImageError e;
-  const double mse = se / double(n * 3);
-  e.psnr = mse > 0.0 ? 10.0 * std::log10(255.0 * 255.0 / mse) : INFINITY;
-  e.withinTolerance = double(within) / double(n);
+  e.psnr = d.psnr();
+  e.withinTolerance = double(d.pixelsWithinTolerance) / double(d.pixels);
   return e;
 }
 
