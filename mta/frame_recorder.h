@@ -12,55 +12,21 @@
 // thesis's comparison runs did the same (§4.7.2) so that texture content cannot change the frame cost.
 // The id variant draws the same triangles with "object_id" into two R32UI targets: attachment 0 holds
 // the global triangle index (runtime_geometry.h), 0xffffffff where nothing was drawn.
-// Also implements the texture cache: RGBA8 mip chains made from resident blocks (dropped when a block
-// is removed or reloaded) or, for the comparison runs, read straight from the paging file.
-// Does not implement: choosing draws (traversal.h), executing (raster/cpu_backend.h).
+// Does not implement: choosing draws (traversal.h), the mip chains of the textures it uploads
+// (texture_cache.h), executing (raster/cpu_backend.h).
 #pragma once
 
+#include <array>
 #include <cstdint>
-#include <map>
-#include <memory>
-#include <span>
 #include <vector>
 
 #include "mta/paging_file.h"
-#include "mta/residency.h"
 #include "mta/runtime_geometry.h"
+#include "mta/texture_cache.h"
 #include "mta/traversal.h"
 #include "raster/command_list.h"
 
 namespace tessera::mta {
-
-struct MipChain {
-  uint32_t width = 0, height = 0;
-  std::vector<std::vector<uint8_t>> levels;  // RGBA8, rows bottom first as uploaded
-  uint64_t bytes() const;
-};
-
-class TextureCache {
- public:
-  // residency == nullptr: blocks are read from the file on demand (comparison runs), and the cache keeps
-  // at most `fileCacheBytes` of chains.
-  TextureCache(const PagingFile& file, const Residency* residency, uint64_t fileCacheBytes = uint64_t(2) << 30);
-  // Drops chains whose blocks were removed or reloaded since they were made.
-  void prune();
-  const MipChain& atlas(uint8_t tree, uint32_t node);
-  const MipChain& image(uint32_t image);
-  uint64_t bytes() const { return bytes_; }
-
- private:
-  struct Entry {
-    std::shared_ptr<MipChain> chain;
-    std::vector<std::pair<uint32_t, uint64_t>> blocks;  // (block, generation) it was made from
-  };
-  std::span<const uint8_t> blockBytes(uint32_t block);
-  const MipChain& store(uint64_t key, std::shared_ptr<MipChain> chain, std::vector<std::pair<uint32_t, uint64_t>> blocks);
-  const PagingFile& file_;
-  const Residency* residency_;
-  uint64_t fileCacheBytes_, bytes_ = 0;
-  std::map<uint64_t, Entry> entries_;
-  std::vector<std::pair<uint32_t, std::vector<uint8_t>>> recentBlocks_;  // file mode only
-};
 
 struct RecordParams {
   uint32_t width = 1024, height = 768;

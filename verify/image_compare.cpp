@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "base/image_diff.h"
 #include "verify/image_read.h"
 #include "verify/json_number.h"
 
@@ -14,14 +15,6 @@ const std::array<const char*, kHistogramBins> kHistogramLabels = {"0",    "1",  
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// |a - b| with the NaN rules of image_compare.h.
-double absDiff(double a, double b) {
-  const bool na = std::isnan(a), nb = std::isnan(b);
-  if (na || nb) return na && nb ? 0.0 : kInf;
-  if (a == b) return 0.0;   // also +inf == +inf
-  return std::fabs(a - b);  // +inf when either is infinite
-}
 
 // Upper bounds (inclusive) of the histogram bins, in histogram units rounded up.
 int histogramBin(double units) {
@@ -105,10 +98,14 @@ CompareResult compareImages(const std::string& pathA, const std::string& pathB, 
     histUnit[size_t(c)] = isIntegerChannel(t) ? 1.0 : 1.0 / 255.0;
     peak[size_t(c)] = channelPeak(t);
   }
-  r.maxAbsDiff.assign(size_t(nc), 0.0);
   auto images = std::make_shared<CompareResult::Images>();
   images->bin.assign(n, 0);
-  double sumSq = 0.0;  // of (Δ / peak)^2, accumulated in pixel order (deterministic)
+  // |Δ|, the maxima, the differing pixels and the PSNR with idiff's NaN rules, squares relative to each
+  // channel's peak, in pixel order (base/image_diff.h).
+  ImageDiffRules rules;
+  rules.nonFinite = NonFiniteRule::FullScale;
+  rules.relativeToPeak = true;
+  ImageDiffAccumulator diff(nc, rules, peak);
   double largest = -1.0;
 
   std::vector<double> va(ch), vb(ch);
@@ -117,7 +114,7 @@ CompareResult compareImages(const std::string& pathA, const std::string& pathB, 
     double units = 0.0;
     for (int c = 0; c < nc; ++c) {
       va[size_t(c)] = a->value(p, c), vb[size_t(c)] = b->value(p, c);
-      const double d = absDiff(va[size_t(c)], vb[size_t(c)]);
+      const double d = diff.add(c, va[size_t(c)], vb[size_t(c)]);
       if (d == 0.0) {
         ++finite[size_t(c)];
         continue;
@@ -129,24 +126,20 @@ CompareResult compareImages(const std::string& pathA, const std::string& pathB, 
         largest = d;
         r.maxX = int32_t(p % size_t(r.width)), r.maxY = int32_t(p / size_t(r.width)), r.maxChannel = c;
       }
-      r.maxAbsDiff[size_t(c)] = std::max(r.maxAbsDiff[size_t(c)], d);
       if (std::isinf(d)) {
         nonfinite = true;
-        sumSq += 1.0;
         units = kInf;
         continue;
       }
       ++finite[size_t(c)];
       sumAbs[size_t(c)] += d;
-      const double rel = d / peak[size_t(c)];
-      sumSq += rel * rel;
       units = std::max(units, d / histUnit[size_t(c)]);
     }
+    diff.endPixel(differs);
     const int bin = histogramBin(units);
     ++r.histogram[size_t(bin)];
     images->bin[p] = nonfinite ? CompareResult::kNonFiniteBin : uint8_t(bin);
     if (!differs) continue;
-    ++r.differingPixels;
     r.failingPixels += fails;
     r.warningPixels += warns;
     r.nonfiniteMismatches += nonfinite;
@@ -157,8 +150,9 @@ CompareResult compareImages(const std::string& pathA, const std::string& pathB, 
   r.maxX += a->originX, r.maxY += a->originY;
   for (int c = 0; c < nc; ++c)
     r.meanAbsDiff.push_back(finite[size_t(c)] ? sumAbs[size_t(c)] / double(finite[size_t(c)]) : 0.0);
-  const double mse = n && nc ? sumSq / (double(n) * nc) : 0.0;
-  r.psnr = mse == 0.0 ? kInf : 10.0 * std::log10(1.0 / mse);
+  r.differingPixels = diff.result().differingPixels;
+  r.maxAbsDiff = diff.result().maxAbsDelta;
+  r.psnr = diff.result().psnr();
   r.exactMatchPercent = n ? 100.0 * double(n - r.differingPixels) / double(n) : 100.0;
 
   if (double(r.failingPixels) > options.failPercent / 100.0 * double(n)) {

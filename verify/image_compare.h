@@ -18,7 +18,8 @@
 //   full-scale error.
 // Statistics. exact_match_percent = pixels with every channel equal; max / mean |Δ| per channel;
 //   PSNR = 10 log10(1 / mean((Δ / peak)^2)) over all channels, peak = the type's maximum (255 for
-//   8-bit, 1 for floats), +inf for identical images; the error histogram counts pixels by the largest
+//   8-bit, 1 for floats), +inf for identical images (|Δ|, the maxima and the PSNR are base/image_diff.h's,
+//   with NonFiniteRule::FullScale and relativeToPeak); the error histogram counts pixels by the largest
 //   channel |Δ| in histogram units (integer steps for integer channels, 1/255 for float channels),
 //   rounded up, in bins 0, 1, 2, 3-4, 5-8, 9-16, 17-32, 33-64, 65-128, 129-255 (the last bin takes
 //   everything >= 129, non-finite mismatches included), so the bins sum to the pixel count.

@@ -2,9 +2,9 @@
 
 #include <cmath>
 #include <cstring>
-#include <limits>
 #include <stdexcept>
 
+#include "base/image_diff.h"
 #include "raster/image_io.h"
 
 namespace tessera::verify {
@@ -38,11 +38,7 @@ inline bool inside(double v, double lo, double hi) { return (v >= lo && v <= hi)
 
 }  // namespace
 
-double Judgement::psnr() const {
-  if (mse <= 0.0) return std::numeric_limits<double>::infinity();
-  const double peak = isUnorm(format) ? 255.0 : 1.0;
-  return 10.0 * std::log10(peak * peak / mse);
-}
+double Judgement::psnr() const { return psnrFromMse(mse, isUnorm(format) ? 255.0 : 1.0); }
 
 Judgement judge(const TextureData& tex, uint32_t level, uint32_t layer, const std::vector<uint8_t>& other) {
   if (!tex.prov) throw Error("judge: the oracle image was not rendered in provenance mode");
@@ -62,7 +58,12 @@ Judgement judge(const TextureData& tex, uint32_t level, uint32_t layer, const st
   j.classMap.resize(j.pixels);
   j.failMap.resize(j.pixels);
   const auto& cls = tex.prov->classes[level];
-  double sq = 0.0;
+  // The size of the differences (max |Δ| per channel, MSE) in channel units, in pixel order
+  // (base/image_diff.h). Non-finite differences are left out: their pixels are judged by interval.
+  ImageDiffRules rules;
+  rules.nonFinite = NonFiniteRule::Skip;
+  rules.peak = isUnorm(j.format) ? 255.0 : 1.0;
+  ImageDiffAccumulator diff(j.channels, rules);
   for (int y = 0; y < j.height; ++y) {
     for (int x = 0; x < j.width; ++x) {
       const size_t i = size_t(y) * size_t(j.width) + size_t(x);
@@ -77,6 +78,7 @@ Judgement judge(const TextureData& tex, uint32_t level, uint32_t layer, const st
       if (std::memcmp(pv, po, bpt) == 0) {
         ++j.exact;
         ++j.histogram[0];
+        diff.endPixel(false);
         continue;
       }
       bool within = true;
@@ -87,13 +89,10 @@ Judgement judge(const TextureData& tex, uint32_t level, uint32_t layer, const st
         const double l = channelValue(j.format, &lo[i * bpt], c), h = channelValue(j.format, &hi[i * bpt], c);
         rec.oracle[size_t(c)] = v, rec.other[size_t(c)] = o, rec.lo[size_t(c)] = l, rec.hi[size_t(c)] = h;
         if (!sameValue(v, o) && !inside(o, l, h)) within = false;
-        const double d = std::fabs(v - o);
-        if (std::isfinite(d)) {
-          worst = std::max(worst, d);
-          j.maxAbsDiff[size_t(c)] = std::max(j.maxAbsDiff[size_t(c)], d);
-          sq += d * d;
-        }
+        const double d = diff.add(c, v, o);
+        if (std::isfinite(d)) worst = std::max(worst, d);
       }
+      diff.endPixel(true);
       ++j.histogram[size_t(histogramBin(worst))];
       if (within) {
         ++j.explained;
@@ -107,7 +106,9 @@ Judgement judge(const TextureData& tex, uint32_t level, uint32_t layer, const st
       }
     }
   }
-  j.mse = j.pixels ? sq / double(j.pixels * uint64_t(j.channels)) : 0.0;
+  const ImageDiff& d = diff.result();
+  for (int c = 0; c < j.channels; ++c) j.maxAbsDiff[size_t(c)] = d.maxAbsDelta[size_t(c)];
+  j.mse = d.mse();
   return j;
 }
 

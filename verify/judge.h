@@ -4,7 +4,8 @@
 // value (no ambiguity class) must match bit for bit; a classed pixel must lie inside its interval in
 // every channel; anything else is unexplained. Also gathers what a reader needs to see why: counts
 // per class, exact-match %, max |delta| per channel in LSBs, an error histogram, PSNR and the first
-// unexplained pixels with both values and their provenance.
+// unexplained pixels with both values and their provenance. The max |delta| and the MSE / PSNR are
+// base/image_diff.h's (NonFiniteRule::Skip, peak 255 for unorm formats, 1 otherwise).
 // Does not implement: rendering either image (cpu_backend.h, gl/), or reports on disk (crosscheck_report.h).
 #pragma once
 

@@ -103,6 +103,17 @@ PY
       || fail "golden check failed: $(cat check.json)"
     [ "$(json_field check.json "['passed']")" -ge 16 ] || fail "fewer goldens than expected: $(cat check.json)"
     ;;
+  railway_golden_command_reproduces_the_golden_frames)
+    # The manifest's "command" of the mta_railway entries, run with the CLI, gives the golden frames
+    # (golden/railway_frames.cpp lays out the path and the options itself).
+    "$tessera" mta build "$src/data/railway.glb" --d-min 5 -o tree.mta --quiet > /dev/null
+    "$tessera" mta render tree.mta --path thesis --frames 60 --size 256x192 --capacity 48 --budget 4MiB --save-every 15 \
+      -o render --quiet > /dev/null
+    for i in 0 15 30 45 59; do
+      "$tessera" compare "$src/golden/images/mta_railway.f$(printf %03d $i).png" "render/frame_$(printf %04d $i).png" \
+        > compare.json || fail "frame $i differs from its golden: $(cat compare.json)"
+    done
+    ;;
   atlas_tree_render_runs_and_texel_end_to_end)
     "$tessera" city --preset berlin --buildings 9 --seed 5 -o city --quiet > /dev/null
     "$tessera" mta build city/*.gltf -o tree.mta --d-min 40 --quiet > /dev/null

@@ -79,7 +79,10 @@ void addMtaCommands(CLI::App& app) {
     std::printf("%s\n", j.dump(2).c_str());
     printSummary(j);
   });
-  addMtaRenderCommands(app, mtaCmd);
+  // In this order, as --help lists them: mta render, mta runs, then the top-level texel.
+  addMtaRenderCommand(mtaCmd);
+  addMtaRunsCommand(mtaCmd);
+  addTexelCommand(app);
 }
 
 }  // namespace tessera::cli

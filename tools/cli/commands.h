@@ -10,8 +10,9 @@ void addDemoCommand(CLI::App& app);     // demo (cmd_demo.cpp)
 void addGoldenCommands(CLI::App& app);  // golden check / update (cmd_golden.cpp)
 void addVerifyCommands(CLI::App& app);  // crosscheck, visibility, compare, bench (cmd_verify.cpp)
 void addCityCommand(CLI::App& app);     // city (cmd_city.cpp)
-void addMtaCommands(CLI::App& app);     // mta build / info (cmd_mta.cpp)
-// mta render / runs and the top-level texel (cmd_mta_render.cpp)
-void addMtaRenderCommands(CLI::App& app, CLI::App* mtaCmd);
+void addMtaCommands(CLI::App& app);     // mta build / info (cmd_mta.cpp), then the three below
+void addMtaRenderCommand(CLI::App* mtaCmd);  // mta render (cmd_mta_render.cpp)
+void addMtaRunsCommand(CLI::App* mtaCmd);    // mta runs (cmd_mta_runs.cpp)
+void addTexelCommand(CLI::App& app);         // texel (cmd_texel.cpp)
 
 }  // namespace tessera::cli

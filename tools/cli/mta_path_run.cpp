@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -126,6 +127,20 @@ std::pair<double, double> maxMean(const std::vector<double>& v) {
   double mx = 0.0, sum = 0.0;
   for (double x : v) mx = std::max(mx, x), sum += x;
   return {mx, v.empty() ? 0.0 : sum / double(v.size())};
+}
+
+std::vector<double> column(const nlohmann::json& rows, const char* key) {
+  std::vector<double> v;
+  for (const auto& r : rows) v.push_back(r.contains(key) && !r[key].is_null() ? r[key].get<double>() : NAN);
+  return v;
+}
+
+bool saveFrame(const PathRunArgs& a, size_t i, size_t n) { return a.saveEvery && (i % a.saveEvery == 0 || i + 1 == n); }
+
+std::string frameName(const char* prefix, size_t i) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%s_%04zu.png", prefix, i);
+  return buf;
 }
 
 }  // namespace tessera::cli

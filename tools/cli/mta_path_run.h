@@ -56,12 +56,23 @@ class Progress {
   double last_ = -1e9;
 };
 
-// The three commands (cmd_mta_render.cpp); each writes its files under a.out and returns its summary.
+// The three commands (cmd_mta_render.cpp, cmd_mta_runs.cpp, cmd_texel.cpp); each writes its files under
+// a.out and returns its summary.
 nlohmann::json runMtaRender(const PathRunArgs& a);
 nlohmann::json runMtaRuns(const PathRunArgs& a, int tolerance);
 nlohmann::json runTexel(const PathRunArgs& a);
 
 // max, mean of a series.
 std::pair<double, double> maxMean(const std::vector<double>& v);
+// The series of rows[i][key]; NaN where a row lacks it or holds null (a gap in the charts).
+std::vector<double> column(const nlohmann::json& rows, const char* key);
+// Whether frame i of n is written as PNG: every a.saveEvery-th and the last (none when saveEvery is 0).
+bool saveFrame(const PathRunArgs& a, size_t i, size_t n);
+// "<prefix>_NNNN.png".
+std::string frameName(const char* prefix, size_t i);
+
+// The colours of the charts' series.
+inline constexpr verify::Rgba kBlue{40, 90, 200, 255}, kRed{210, 50, 40, 255}, kGreen{30, 150, 60, 255},
+    kGrey{110, 110, 110, 255}, kOrange{230, 140, 20, 255}, kPurple{140, 60, 170, 255};
 
 }  // namespace tessera::cli

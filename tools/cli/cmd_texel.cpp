@@ -1,0 +1,125 @@
+// `tessera texel`: the texel-per-pixel analysis of an atlas tree over a camera path (mta/texel_ratio.h):
+// per-frame JSON, heat maps, frames and a histogram of pixels per texel (docs/mta-render.md).
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "model/model.h"
+#include "mta/build.h"
+#include "mta/scene.h"
+#include "mta/texel_ratio.h"
+#include "raster/image_io.h"
+#include "tools/cli/commands.h"
+#include "tools/cli/frame_job.h"
+#include "tools/cli/mta_path_run.h"
+
+namespace tessera::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+verify::RgbaCanvas histogramPng(const std::array<uint64_t, mta::kRatioBins>& hist, double tau) {
+  const int barW = 56, chartH = 200, left = 20, top = 30;
+  verify::RgbaCanvas c(left * 2 + barW * mta::kRatioBins, chartH + top + 50, {255, 255, 255, 255});
+  c.text(left, 8, "pixels per texel at the level sampled", {0, 0, 0, 255}, 2);
+  uint64_t mx = 1;
+  for (uint64_t v : hist) mx = std::max(mx, v);
+  for (int b = 0; b < mta::kRatioBins; ++b) {
+    const int bh = int(double(chartH) * double(hist[size_t(b)]) / double(mx));
+    const double lo = mta::ratioBinLower(b);
+    const verify::Rgba col = lo >= tau * 0.999 ? kRed : (lo >= 1.0 ? kOrange : kGreen);
+    c.fillRect(left + b * barW + 4, top + chartH - bh, barW - 8, bh, col);
+    char label[32];
+    std::snprintf(label, sizeof label, b == 0 ? "<0.25" : ">%.3g", lo);
+    c.text(left + b * barW + 4, top + chartH + 6, label, {0, 0, 0, 255}, 2);
+    std::snprintf(label, sizeof label, "%llu", (unsigned long long)hist[size_t(b)]);
+    c.text(left + b * barW + 4, top + chartH + 24, label, {60, 60, 60, 255}, 1);
+  }
+  return c;
+}
+
+}  // namespace
+
+nlohmann::json runTexel(const PathRunArgs& a) {
+  fs::create_directories(a.out);
+  std::string treePath = a.input;
+  if (fs::path(a.input).extension() != ".mta") {
+    // A model: build its tree with the default parameters first (kept, so later runs can reuse it).
+    treePath = (fs::path(a.out) / "tree.mta").string();
+    if (!a.quiet) std::fprintf(stderr, "texel: %s is a model; building its atlas tree into %s\n", a.input.c_str(), treePath.c_str());
+    auto model = std::make_shared<const model::Model>(model::loadModel(a.input));
+    mta::BuildParams p;
+    p.dMin = a.buildDMin;
+    p.progress = !a.quiet;
+    mta::buildMta(mta::sceneFromModel(model), p, treePath);
+  }
+  mta::PagingFile file(treePath);
+  const mta::CameraPath path = loadPath(a, file.meta());
+  const mta::RendererOptions o = rendererOptions(a, mta::RenderMode::AtlasTree);
+  const double tau = o.tau > 0.0 ? o.tau : file.meta().params.tau;
+  mta::TreeRenderer renderer(file, o);
+  nlohmann::json rows = nlohmann::json::array();
+  std::array<uint64_t, mta::kRatioBins> hist{};
+  uint64_t violations = 0, violationsAllResident = 0, framesAllResident = 0, atlasPixels = 0, abovePixels = 0;
+  double maxRatio = 0.0;
+  Progress progress("texel", path.frames.size(), a.quiet);
+  for (size_t i = 0; i < path.frames.size(); ++i) {
+    mta::FrameResult r = renderer.renderFrame(path.frames[i]);
+    const std::vector<uint32_t> ids = renderer.triangleIds(path.frames[i], r.plan);
+    const mta::TexelFrame t = mta::analyzeTexels(renderer, path.frames[i], r, ids, tau);
+    nlohmann::json j = mta::toJson(t);
+    j["frame"] = i;
+    j["needed_blocks_missing"] = r.residency.neededMissing;
+    j["nodes_coarser_than_needed"] = r.plan.coarserThanNeeded;
+    rows.push_back(j);
+    for (int b = 0; b < mta::kRatioBins; ++b) hist[size_t(b)] += t.histogram[size_t(b)];
+    violations += t.magnificationViolations;
+    atlasPixels += t.pixelsAtlas;
+    abovePixels += t.atlasAboveTau;
+    maxRatio = std::max(maxRatio, t.maxAtlasRatioBase);
+    if (r.plan.coarserThanNeeded == 0) {
+      ++framesAllResident;
+      violationsAllResident += t.magnificationViolations;
+    }
+    if (saveFrame(a, i, path.frames.size())) {
+      const std::vector<uint8_t> heat = mta::heatMap(t, tau);
+      writePngRGBA8((fs::path(a.out) / frameName("texel", i)).string(), int(t.width), int(t.height), heat.data());
+      writeFramePng((fs::path(a.out) / frameName("frame", i)).string(), t.width, t.height, r.image);
+    }
+    progress.tick(i + 1, std::to_string(t.magnificationViolations) + " violations");
+  }
+  nlohmann::json histJson = nlohmann::json::array();
+  for (int b = 0; b < mta::kRatioBins; ++b) histJson.push_back({{"ratio_at_least", mta::ratioBinLower(b)}, {"pixels", hist[size_t(b)]}});
+  nlohmann::json summary = {{"frames", rows.size()},
+                            {"tau", tau},
+                            {"magnification_violations", violations},
+                            {"frames_with_every_needed_block_resident", framesAllResident},
+                            {"magnification_violations_when_every_needed_block_resident", violationsAllResident},
+                            {"atlas_pixels", atlasPixels},
+                            {"atlas_pixels_above_tau_capped_by_original", abovePixels - violations},
+                            {"max_atlas_ratio_level0", maxRatio},
+                            {"histogram", histJson}};
+  nlohmann::json doc = {{"options", optionsJson(a, o, path)}, {"summary", summary}, {"frames", rows}};
+  writeTextFile((fs::path(a.out) / "texel.json").string(), doc.dump(1) + "\n");
+  writeChartPng((fs::path(a.out) / "histogram.png").string(), histogramPng(hist, tau));
+  return summary;
+}
+
+void addTexelCommand(CLI::App& app) {
+  auto ta = std::make_shared<PathRunArgs>();
+  auto* texel = app.add_subcommand(
+      "texel", "Texel-per-pixel analysis over a camera path: per pixel, pixels per texel of the level sampled (analytic "
+               "Jacobian), heat maps, a histogram, and magnification_violations (atlas used although it magnifies beyond tau; "
+               "zero whenever every needed block is resident)");
+  texel->add_option("input", ta->input, "Paging file (.mta), or a model (glTF, OBJ, ...) whose tree is built first into OUT/tree.mta")
+      ->required();
+  addPathRunOptions(texel, *ta, true);
+  texel->add_option("--d-min", ta->buildDMin,
+                    "With a model: d_min of its atlas tree build (default: scene diagonal / 72, which for a small scene "
+                    "such as railway.glb means gigatexels; see docs/mta-build.md)");
+  texel->callback([ta] { std::printf("%s\n", runTexel(*ta).dump(2).c_str()); });
+}
+
+}  // namespace tessera::cli
