@@ -1,0 +1,52 @@
+// Resource limits: the budgets that input is checked against before anything is allocated.
+//
+// Implements: one home for every size limit that protects the process from a file or an option
+// (a frame's total texture / buffer / render-target memory, a model's instances, triangles and
+// decoded texture bytes, the nesting depth of scene graphs, worker threads), their documented defaults
+// (docs/limits.md), overflow-checked arithmetic for computing a need, and the one error message
+// format: what needs how much, the limit, by how much it is over, and the option that raises it.
+// Does not implement: the GL limits of a frame's contents (raster/limits.h: texture size, units,
+// layers), which are part of the oracle's contract rather than protection, or measuring free memory:
+// the defaults are fixed numbers so that a verdict does not depend on the machine.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace tessera {
+
+constexpr uint64_t kKiB = 1024, kMiB = 1024 * kKiB, kGiB = 1024 * kMiB;
+
+struct ResourceLimits {
+  // Every texture level, buffer and render target a frame creates, summed (validate(), --memory-budget).
+  uint64_t frameBytes = 4 * kGiB;
+  // A model: mesh instances after expanding the node graph, triangles over all instances, and the
+  // RGBA8 bytes of all its textures once decoded (--model-budget-* options of the commands that load
+  // models).
+  uint64_t modelInstances = 1'000'000;
+  uint64_t modelTriangles = 50'000'000;
+  uint64_t modelTextureBytes = 8 * kGiB;
+  // Nesting of a scene graph (glTF nodes, AC3D kids): deeper input is refused, whatever the memory.
+  uint32_t graphDepth = 256;
+};
+
+// Worker threads accepted by every --threads option (0 = all cores). Far above any machine the
+// project runs on; far below what tbbmalloc and the per-thread scratch can survive.
+constexpr int kMaxThreads = 256;
+
+// a * b and a + b, or nullopt when the result does not fit in 64 bits.
+std::optional<uint64_t> checkedMul(uint64_t a, uint64_t b);
+std::optional<uint64_t> checkedAdd(uint64_t a, uint64_t b);
+
+// "1.5 GiB", "12 MiB", "300 B": binary units, one decimal.
+std::string formatBytes(uint64_t bytes);
+
+// The one message for a limit that input exceeds, e.g.
+//   "<where>: needs 2.0 TiB of frame memory, over the budget of 4.0 GiB by 2.0 TiB (raise it with --memory-budget)"
+// `need` is nullopt when it overflowed 64 bits ("needs more than 16 EiB"). `bytes` selects byte units.
+std::string overLimitMessage(std::string_view where, std::string_view what, std::optional<uint64_t> need,
+                             uint64_t limit, std::string_view option, bool bytes);
+
+}  // namespace tessera
