@@ -198,7 +198,7 @@ Image loadTexture(const Model& model, size_t index) {
   requireIndex(model, index);
   if (model.textures[index].rawRGBA) {
     const TextureRef& t = model.textures[index];
-    Image img{t.rawWidth, t.rawHeight, {}, 4, false};
+    Image img{{t.rawWidth, t.rawHeight, {}}, 4, false};
     if (!t.bytes || t.bytes->size() != size_t(t.rawWidth) * t.rawHeight * 4)
       throw Error(describe(model, index) + ": raw texel data has the wrong size");
     img.rgba = *t.bytes;

@@ -16,8 +16,9 @@
 //   KHR_texture_transform, MTL -o/-s): never clamped or wrapped, so repeat counts in the thousands
 //   survive. v follows glTF: v = 0 is the first (top) row of the image file. Loaders for formats
 //   whose v points up (OBJ, Assimp) store 1 - v.
-// - Image rows are in file order (top row first). With the v convention above, uploading them to GL
-//   as-is (first file row = GL row 0, t = 0) maps every texcoord to the texel the file meant.
+// - Image rows are in file order (top row first), which is RgbaImage's row 0 (base/rgba_image.h). With
+//   the v convention above, uploading them to GL as-is (first file row = GL row 0, t = 0) maps every
+//   texcoord to the texel the file meant.
 // - Triangles are uint32 index triples, counter-clockwise front faces (a transform with a negative
 //   determinant flips the winding back). Strips and fans are converted; points and lines are dropped
 //   with a note.
@@ -28,6 +29,8 @@
 #include <memory>
 #include <string>
 #include <vector>
+
+#include "base/rgba_image.h"
 
 namespace tessera::model {
 
@@ -100,10 +103,8 @@ struct Model {
   size_t triangleCount() const;
 };
 
-// A decoded texture: RGBA8, rows in file order (top row first), tightly packed.
-struct Image {
-  uint32_t width = 0, height = 0;
-  std::vector<uint8_t> rgba;
+// A decoded texture: an RgbaImage whose row 0 is the file's top row (file order), plus what the file said.
+struct Image : RgbaImage {
   int fileChannels = 0;    // channels the file stores (1 grey, 2 grey+alpha, 3 RGB, 4 RGBA)
   bool usesAlpha = false;  // some texel has alpha < 255
 };

@@ -1,7 +1,6 @@
 #include "tools/scenes/builder.h"
 
 #include <cmath>
-#include <cstring>
 
 #include "raster/texture.h"
 
@@ -117,18 +116,14 @@ void setTexturedDefaults(CommandList& cl) {
   cl.setUniforms(4, v);
 }
 
-void Image::set(uint32_t x, uint32_t y, std::array<uint8_t, 4> c) {
-  std::memcpy(&rgba[(size_t(y) * width + x) * 4], c.data(), 4);
-}
-
-Image checker(uint32_t w, uint32_t h, uint32_t cell, std::array<uint8_t, 4> a, std::array<uint8_t, 4> b) {
-  Image img{w, h, std::vector<uint8_t>(size_t(w) * h * 4)};
+RgbaImage checker(uint32_t w, uint32_t h, uint32_t cell, std::array<uint8_t, 4> a, std::array<uint8_t, 4> b) {
+  RgbaImage img{w, h, std::vector<uint8_t>(size_t(w) * h * 4)};
   for (uint32_t y = 0; y < h; ++y)
     for (uint32_t x = 0; x < w; ++x) img.set(x, y, ((x / cell + y / cell) & 1) ? b : a);
   return img;
 }
 
-ResourceId uploadTexture(CommandList& cl, const Image& img, bool mipmaps) {
+ResourceId uploadTexture(CommandList& cl, const RgbaImage& img, bool mipmaps) {
   TextureDesc d;
   d.kind = TextureKind::Tex2D;
   d.format = Format::RGBA8;

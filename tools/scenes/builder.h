@@ -3,12 +3,12 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
-#include <cstddef>
-
 #include "base/det_math.h"
+#include "base/rgba_image.h"
 #include "raster/command_list.h"
 
 namespace tessera::scenes {
@@ -51,16 +51,12 @@ void setVec4(CommandList& cl, uint32_t slot, std::array<float, 4> v);
 // Identity 3x3 texture matrix in slots 4-6, white tint in slot 7, zero bias in slot 8 ("textured").
 void setTexturedDefaults(CommandList& cl);
 
-// An RGBA8 image, rows bottom-up.
-struct Image {
-  uint32_t width = 0, height = 0;
-  std::vector<uint8_t> rgba;
-  void set(uint32_t x, uint32_t y, std::array<uint8_t, 4> c);
-};
-Image checker(uint32_t w, uint32_t h, uint32_t cell, std::array<uint8_t, 4> a, std::array<uint8_t, 4> b);
+// Scene textures are RgbaImages (base/rgba_image.h): y counts rows from row 0, which is t = 0.
+RgbaImage checker(uint32_t w, uint32_t h, uint32_t cell, std::array<uint8_t, 4> a, std::array<uint8_t, 4> b);
 
 // Creates a 2D RGBA8 texture with a full mip chain from the documented box filter (or one level).
-ResourceId uploadTexture(CommandList& cl, const Image& img, bool mipmaps);
+// The rows are uploaded as they are: image row 0 is GL's first row (t = 0).
+ResourceId uploadTexture(CommandList& cl, const RgbaImage& img, bool mipmaps);
 // Creates a colour render target texture (one level).
 ResourceId createTarget(CommandList& cl, Format f, int w, int h, uint32_t layers = 1);
 

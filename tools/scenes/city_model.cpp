@@ -4,10 +4,10 @@ namespace tessera::scenes {
 
 namespace {
 
-Image facadeTexture(Rng& rng) {
+RgbaImage facadeTexture(Rng& rng) {
   const std::array<uint8_t, 4> wall = {uint8_t(120 + rng.below(100)), uint8_t(100 + rng.below(90)),
                                        uint8_t(80 + rng.below(80)), 255};
-  Image img{64, 64, std::vector<uint8_t>(64 * 64 * 4)};
+  RgbaImage img{64, 64, std::vector<uint8_t>(64 * 64 * 4)};
   for (uint32_t y = 0; y < 64; ++y)
     for (uint32_t x = 0; x < 64; ++x) {
       // 4 x 4 windows per texture repeat; a window is lit with a per-window random shade.

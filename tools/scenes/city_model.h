@@ -12,8 +12,8 @@ struct CityModel {
   Mesh mesh;                                   // ground first, then buildings
   uint32_t groundIndexCount = 0;
   std::vector<std::pair<uint32_t, uint32_t>> buildings;  // (first index, index count)
-  std::vector<Image> facades;                  // one per building
-  Image road;
+  std::vector<RgbaImage> facades;                        // one per building
+  RgbaImage road;
   Mat4 viewProj;
 };
 

@@ -18,8 +18,8 @@ void buildMipTunnel(CommandList& cl, int w, int h) {
   for (uint32_t l = 0; l < d.levels; ++l) {
     const uint32_t s = 256u >> l, cell = std::max(1u, 16u >> l);
     const auto& t = tints[l];
-    Image img = checker(s, s, cell, {t[0], t[1], t[2], 255},
-                        {uint8_t(t[0] / 3), uint8_t(t[1] / 3), uint8_t(t[2] / 3), 255});
+    RgbaImage img =
+        checker(s, s, cell, {t[0], t[1], t[2], 255}, {uint8_t(t[0] / 3), uint8_t(t[1] / 3), uint8_t(t[2] / 3), 255});
     cl.uploadTexture(tex, l, 0, img.rgba);
   }
   Mesh m;

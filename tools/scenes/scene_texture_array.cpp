@@ -19,7 +19,8 @@ ResourceId makeArray(CommandList& cl, uint32_t size, uint32_t layers, uint32_t s
   for (uint32_t l = 0; l < layers; ++l) {
     const std::array<uint8_t, 4> a = {uint8_t(64 + rng.below(192)), uint8_t(64 + rng.below(192)),
                                       uint8_t(64 + rng.below(192)), 255};
-    Image img = checker(size, size, std::max(1u, size / 8), a, {uint8_t(a[0] / 4), uint8_t(a[1] / 4), uint8_t(a[2] / 4), 255});
+    RgbaImage img =
+        checker(size, size, std::max(1u, size / 8), a, {uint8_t(a[0] / 4), uint8_t(a[1] / 4), uint8_t(a[2] / 4), 255});
     const auto chain = buildMipChainRGBA8(size, size, img.rgba);
     for (uint32_t lev = 0; lev < chain.size(); ++lev) cl.uploadTexture(id, lev, l, chain[lev]);
   }
