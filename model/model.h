@@ -12,6 +12,7 @@
 // Conventions (every loader produces them)
 // - Positions are in the file's units with every node transform applied: the hierarchy is composed
 //   in double and the result stored as float. glTF is Y-up; other formats keep their own axes.
+// - Positions and normals are glm::vec3, texcoords glm::vec2 (x = u, y = v).
 // - Texcoords are stored as float exactly as the file gives them after the texture transform (glTF
 //   KHR_texture_transform, MTL -o/-s): never clamped or wrapped, so repeat counts in the thousands
 //   survive. v follows glTF: v = 0 is the first (top) row of the image file. Loaders for formats
@@ -26,6 +27,8 @@
 
 #include <array>
 #include <cstdint>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 #include <memory>
 #include <string>
 #include <vector>
@@ -34,17 +37,10 @@
 
 namespace tessera::model {
 
-struct Float2 {
-  float u = 0.0f, v = 0.0f;
-};
-struct Float3 {
-  float x = 0.0f, y = 0.0f, z = 0.0f;
-};
-
 struct Bounds {
-  Float3 min{1e30f, 1e30f, 1e30f}, max{-1e30f, -1e30f, -1e30f};
+  glm::vec3 min{1e30f, 1e30f, 1e30f}, max{-1e30f, -1e30f, -1e30f};
   bool empty() const { return min.x > max.x; }
-  void add(const Float3& p);
+  void add(const glm::vec3& p);
 };
 
 // How the base colour's alpha is used (glTF 2.0 material.alphaMode).
@@ -66,9 +62,9 @@ struct Material {
 struct Mesh {
   std::string name;
   uint32_t material = 0;  // index into Model::materials (always valid)
-  std::vector<Float3> positions;
-  std::vector<Float2> texcoords;  // the set the material's texture uses (TEXCOORD_n / UV channel n)
-  std::vector<Float3> normals;
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec2> texcoords;  // the set the material's texture uses (TEXCOORD_n / UV channel n)
+  std::vector<glm::vec3> normals;
   std::vector<uint32_t> indices;  // 3 per triangle
   size_t triangleCount() const { return indices.size() / 3; }
 };

@@ -14,7 +14,7 @@ struct CityModel {
   std::vector<std::pair<uint32_t, uint32_t>> buildings;  // (first index, index count)
   std::vector<RgbaImage> facades;                        // one per building
   RgbaImage road;
-  Mat4 viewProj;
+  glm::mat4 viewProj;
 };
 
 CityModel makeCity(int gridSize, int width, int height, uint64_t seed);

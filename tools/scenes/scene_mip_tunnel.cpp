@@ -36,7 +36,7 @@ void buildMipTunnel(CommandList& cl, int w, int h) {
   }
   const uint32_t n = bindMesh(cl, m);
   cl.useProgram(cl.createProgram("textured"));
-  setMatrix(cl, 0, perspective(70.0, double(w) / h, 0.1, 100.0) * lookAt({0.3f, 0.2f, 0}, {0, 0, -10}, {0, 1, 0}));
+  setMatrix(cl, 0, mul(perspective(70.0, double(w) / h, 0.1, 100.0), lookAt({0.3f, 0.2f, 0}, {0, 0, -10}, {0, 1, 0})));
   setTexturedDefaults(cl);
   DepthState ds;
   ds.test = true;

@@ -53,7 +53,7 @@ void buildTextureArray(CommandList& cl, int w, int h) {
   }
   const uint32_t n = bindMesh(cl, m);
   cl.useProgram(cl.createProgram("texarray_batch"));
-  setMatrix(cl, 0, perspective(50.0, double(w) / h, 0.1, 50.0) * lookAt({0.5f, -3.2f, 2.6f}, {0, 0, 0}, {0, 0, 1}));
+  setMatrix(cl, 0, mul(perspective(50.0, double(w) / h, 0.1, 50.0), lookAt({0.5f, -3.2f, 2.6f}, {0, 0, 0}, {0, 0, 1})));
   DepthState ds;
   ds.test = true;
   cl.setDepthState(ds);
