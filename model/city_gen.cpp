@@ -14,19 +14,19 @@ namespace tessera::model {
 
 namespace city {
 
-void Primitive::quad(const Float3 (&p)[4], const Float2 (&t)[4]) {
+void Primitive::quad(const glm::vec3 (&p)[4], const glm::vec2 (&t)[4]) {
   const uint32_t b = uint32_t(positions.size());
   for (int k = 0; k < 4; ++k) positions.push_back(p[k]), texcoords.push_back(t[k]);
   indices.insert(indices.end(), {b, b + 1, b + 2, b, b + 2, b + 3});
 }
 
-void Primitive::quad(const Float3 (&p)[4]) {
+void Primitive::quad(const glm::vec3 (&p)[4]) {
   const uint32_t b = uint32_t(positions.size());
   for (int k = 0; k < 4; ++k) positions.push_back(p[k]);
   indices.insert(indices.end(), {b, b + 1, b + 2, b, b + 2, b + 3});
 }
 
-void Primitive::triangle(const Float3 (&p)[3], const Float2 (&t)[3]) {
+void Primitive::triangle(const glm::vec3 (&p)[3], const glm::vec2 (&t)[3]) {
   const uint32_t b = uint32_t(positions.size());
   for (int k = 0; k < 3; ++k) positions.push_back(p[k]), texcoords.push_back(t[k]);
   indices.insert(indices.end(), {b, b + 1, b + 2});
@@ -75,26 +75,26 @@ void wall(Primitive& p, double x0, double z0, double x1, double z1, double y0, d
 // An axis-aligned box without its bottom, texcoords 0..1 per face.
 void box(Primitive& p, double cx, double y0, double cz, double hx, double hy, double hz) {
   const double x0 = cx - hx, x1 = cx + hx, z0 = cz - hz, z1 = cz + hz, y1 = y0 + 2 * hy;
-  const Float2 t[4] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+  const glm::vec2 t[4] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
   auto q = [&](double ax, double az, double bx, double bz) {
-    const Float3 v[4] = {{f(ax), f(y0), f(az)}, {f(bx), f(y0), f(bz)}, {f(bx), f(y1), f(bz)}, {f(ax), f(y1), f(az)}};
+    const glm::vec3 v[4] = {{f(ax), f(y0), f(az)}, {f(bx), f(y0), f(bz)}, {f(bx), f(y1), f(bz)}, {f(ax), f(y1), f(az)}};
     p.quad(v, t);
   };
   q(x0, z1, x1, z1), q(x1, z1, x1, z0), q(x1, z0, x0, z0), q(x0, z0, x0, z1);
-  const Float3 top[4] = {{f(x0), f(y1), f(z1)}, {f(x1), f(y1), f(z1)}, {f(x1), f(y1), f(z0)}, {f(x0), f(y1), f(z0)}};
+  const glm::vec3 top[4] = {{f(x0), f(y1), f(z1)}, {f(x1), f(y1), f(z1)}, {f(x1), f(y1), f(z0)}, {f(x0), f(y1), f(z0)}};
   p.quad(top, t);
 }
 
 // A horizontal quad at height y over [x0, x1] x [z0, z1] facing +Y, texcoords scaled by `repeat`.
 void ground(Primitive& p, double x0, double z0, double x1, double z1, double y, double repeatU, double repeatV) {
-  const Float3 v[4] = {{f(x0), f(y), f(z1)}, {f(x1), f(y), f(z1)}, {f(x1), f(y), f(z0)}, {f(x0), f(y), f(z0)}};
-  const Float2 t[4] = {{0, f(repeatV)}, {f(repeatU), f(repeatV)}, {f(repeatU), 0}, {0, 0}};
+  const glm::vec3 v[4] = {{f(x0), f(y), f(z1)}, {f(x1), f(y), f(z1)}, {f(x1), f(y), f(z0)}, {f(x0), f(y), f(z0)}};
+  const glm::vec2 t[4] = {{0, f(repeatV)}, {f(repeatU), f(repeatV)}, {f(repeatU), 0}, {0, 0}};
   p.quad(v, t);
 }
 
 // The same without texcoords (an untextured primitive).
 void flat(Primitive& p, double x0, double z0, double x1, double z1, double y) {
-  const Float3 v[4] = {{f(x0), f(y), f(z1)}, {f(x1), f(y), f(z1)}, {f(x1), f(y), f(z0)}, {f(x0), f(y), f(z0)}};
+  const glm::vec3 v[4] = {{f(x0), f(y), f(z1)}, {f(x1), f(y), f(z1)}, {f(x1), f(y), f(z0)}, {f(x0), f(y), f(z0)}};
   p.quad(v);
 }
 
@@ -171,7 +171,8 @@ Scene buildBerlin(uint32_t buildings, uint64_t seed, uint32_t textureSize) {
       wall(p, cx[k], cz[k], cx[k + 1], cz[k + 1], 0.0, h, 1, 1, u, len / 12.0, 1.0 / 12.0);
       u += len / 12.0;
     }
-    const Float3 roof[4] = {{f(-hx), f(h), f(hz)}, {f(hx), f(h), f(hz)}, {f(hx), f(h), f(-hz)}, {f(-hx), f(h), f(-hz)}};
+    const glm::vec3 roof[4] = {
+        {f(-hx), f(h), f(hz)}, {f(hx), f(h), f(hz)}, {f(hx), f(h), f(-hz)}, {f(-hx), f(h), f(-hz)}};
     // Untextured, like the ground (the thesis' roofs carried an aerial image outside the atlas tree).
     // A roof mapping a small region of the facade texture needs far more texels per repeat than the
     // walls (512, the cap, against ~135), and a node stores each texture at one resolution: the whole
@@ -299,10 +300,10 @@ Scene buildChemnitz(uint32_t buildings, uint64_t seed, uint32_t textureSize) {
     Primitive& rp = prim(b, roofs.take());
     const double apex = h + 2.0 + rng.unit() * 3.0;
     for (int j = 0; j < k; ++j) {
-      const Float3 v[3] = {{f(px[size_t(j)]), f(h), f(pz[size_t(j)])},
-                           {f(px[size_t(j) + 1]), f(h), f(pz[size_t(j) + 1])},
-                           {0, f(apex), 0}};
-      const Float2 t[3] = {
+      const glm::vec3 v[3] = {{f(px[size_t(j)]), f(h), f(pz[size_t(j)])},
+                              {f(px[size_t(j) + 1]), f(h), f(pz[size_t(j) + 1])},
+                              {0, f(apex), 0}};
+      const glm::vec2 t[3] = {
           {f(px[size_t(j)] / 2), f(pz[size_t(j)] / 2)}, {f(px[size_t(j) + 1] / 2), f(pz[size_t(j) + 1] / 2)}, {0, 0}};
       rp.triangle(v, t);
     }
@@ -331,17 +332,17 @@ Scene buildChemnitz(uint32_t buildings, uint64_t seed, uint32_t textureSize) {
       Primitive& tp = prim(b, trees.take());
       const double a = rng.unit() * 2.0 * kPi, d = 15.0 + rng.unit() * 2.0, tx = d * detCos(a), tz = d * detSin(a);
       const double r = 2.0 + rng.unit() * 2.0, th = 4.0 + rng.unit() * 5.0;
-      const Float2 t[4] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
-      const Float3 q1[4] = {
+      const glm::vec2 t[4] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+      const glm::vec3 q1[4] = {
           {f(tx - r), 0, f(tz)}, {f(tx + r), 0, f(tz)}, {f(tx + r), f(th), f(tz)}, {f(tx - r), f(th), f(tz)}};
-      const Float3 q2[4] = {
+      const glm::vec3 q2[4] = {
           {f(tx), 0, f(tz - r)}, {f(tx), 0, f(tz + r)}, {f(tx), f(th), f(tz + r)}, {f(tx), f(th), f(tz - r)}};
       tp.quad(q1, t), tp.quad(q2, t);
     }
     // A glass canopy on one building in five (RGBA, BLEND).
     if (rng.below(5) == 0) {
-      const Float3 v[4] = {{-3, f(floorH), 3}, {3, f(floorH), 3}, {3, f(floorH), -3}, {-3, f(floorH), -3}};
-      const Float2 t[4] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+      const glm::vec3 v[4] = {{-3, f(floorH), 3}, {3, f(floorH), 3}, {3, f(floorH), -3}, {-3, f(floorH), -3}};
+      const glm::vec2 t[4] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
       prim(b, glasses.take()).quad(v, t);
     }
     // A raised plaza on one lot in three: pavement at 0.3 m per tile repeat.

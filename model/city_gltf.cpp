@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <glm/common.hpp>
 #include <mutex>
 
 #include "base/atomic_file.h"
@@ -103,10 +104,9 @@ void writeScene(const Scene& scene, const CityOptions& o, CitySummary& s) {
     if (!n.primitives.empty()) {
       nlohmann::json prims = nlohmann::json::array();
       for (const Primitive& p : n.primitives) {
-        Float3 lo = p.positions.front(), hi = p.positions.front();
-        for (const Float3& v : p.positions)
-          lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)},
-          hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
+        glm::vec3 lo = p.positions.front(), hi = p.positions.front();
+        for (const glm::vec3& v : p.positions)
+          lo = glm::min(lo, v), hi = glm::max(hi, v);  // per component, as std::min / std::max
         const size_t a = accessors.size();
         accessors.push_back({{"bufferView", 0},
                              {"byteOffset", pos.size()},

@@ -36,14 +36,14 @@ struct Primitive {
   // < Scene::textures.size(): that texture's material (one material per texture);
   // else Scene::colours[material - textures.size()].
   uint32_t material = 0;
-  std::vector<Float3> positions;
-  std::vector<Float2> texcoords;  // one per position, or empty (untextured: no TEXCOORD_0 is written)
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec2> texcoords;  // one per position, or empty (untextured: no TEXCOORD_0 is written)
   std::vector<uint32_t> indices;
   // Appends the quad p0 p1 p2 p3 (counter-clockwise seen from the front) with its corner texcoords.
-  void quad(const Float3 (&p)[4], const Float2 (&t)[4]);
+  void quad(const glm::vec3 (&p)[4], const glm::vec2 (&t)[4]);
   // The same without texcoords, for untextured primitives only.
-  void quad(const Float3 (&p)[4]);
-  void triangle(const Float3 (&p)[3], const Float2 (&t)[3]);
+  void quad(const glm::vec3 (&p)[4]);
+  void triangle(const glm::vec3 (&p)[3], const glm::vec2 (&t)[3]);
 };
 
 struct Node {

@@ -21,11 +21,11 @@ namespace tessera::model::detail {
 
 namespace {
 
-Transform toTransform(const aiMatrix4x4& a) {
-  Transform t;
+glm::dmat4 toTransform(const aiMatrix4x4& a) {
+  glm::dmat4 t;
   const ai_real* p = &a.a1;  // row-major
   for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) t.m[size_t(c * 4 + r)] = double(p[r * 4 + c]);
+    for (int c = 0; c < 4; ++c) t[c][r] = double(p[r * 4 + c]);
   return t;
 }
 
@@ -47,7 +47,7 @@ class AssimpBuilder {
 
   void run() {
     for (unsigned i = 0; i < sc_.mNumMaterials; ++i) material(*sc_.mMaterials[i], i);
-    node(*sc_.mRootNode, Transform{}, 0);
+    node(*sc_.mRootNode, glm::dmat4(1.0), 0);
     if (skippedMeshes_) out_.notes.push_back(std::to_string(skippedMeshes_) + " point / line meshes skipped");
   }
 
@@ -132,9 +132,9 @@ class AssimpBuilder {
     return index;
   }
 
-  void node(const aiNode& n, const Transform& parent, int depth) {
+  void node(const aiNode& n, const glm::dmat4& parent, int depth) {
     if (depth > 1000) throw Error(path_ + ": the node hierarchy is deeper than 1000 levels");
-    const Transform world = parent * toTransform(n.mTransformation);
+    const glm::dmat4 world = compose(parent, toTransform(n.mTransformation));
     for (unsigned i = 0; i < n.mNumMeshes; ++i) {
       if (n.mMeshes[i] >= sc_.mNumMeshes)
         throw Error(path_ + ": node '" + std::string(n.mName.C_Str()) + "' names a missing mesh");
@@ -143,7 +143,7 @@ class AssimpBuilder {
     for (unsigned i = 0; i < n.mNumChildren; ++i) node(*n.mChildren[i], world, depth + 1);
   }
 
-  void mesh(const aiMesh& am, const Transform& world) {
+  void mesh(const aiMesh& am, const glm::dmat4& world) {
     if (!(am.mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) {
       ++skippedMeshes_;
       return;
@@ -160,11 +160,11 @@ class AssimpBuilder {
       }
       mesh.material = uint32_t(defaultMaterial_);
     }
-    const bool identity = world.isIdentity();
+    const bool identity = isIdentity(world);
     mesh.positions.resize(am.mNumVertices);
     for (unsigned i = 0; i < am.mNumVertices; ++i) {
-      const Float3 p{float(am.mVertices[i].x), float(am.mVertices[i].y), float(am.mVertices[i].z)};
-      mesh.positions[i] = identity ? p : world.point(p);
+      const glm::vec3 p{float(am.mVertices[i].x), float(am.mVertices[i].y), float(am.mVertices[i].z)};
+      mesh.positions[i] = identity ? p : transformPoint(world, p);
     }
     const UvChannel& uv = uv_[mesh.material];
     if (uv.channel < AI_MAX_NUMBER_OF_TEXTURECOORDS && am.mTextureCoords[uv.channel]) {
@@ -180,11 +180,11 @@ class AssimpBuilder {
     if (am.mNormals) {
       mesh.normals.resize(am.mNumVertices);
       for (unsigned i = 0; i < am.mNumVertices; ++i) {
-        const Float3 n{float(am.mNormals[i].x), float(am.mNormals[i].y), float(am.mNormals[i].z)};
-        mesh.normals[i] = identity ? n : world.normal(n);
+        const glm::vec3 n{float(am.mNormals[i].x), float(am.mNormals[i].y), float(am.mNormals[i].z)};
+        mesh.normals[i] = identity ? n : transformNormal(world, n);
       }
     }
-    const bool flip = world.det3() < 0.0;
+    const bool flip = det3(world) < 0.0;
     for (unsigned f = 0; f < am.mNumFaces; ++f) {
       const aiFace& face = am.mFaces[f];
       if (face.mNumIndices != 3) continue;  // SortByPType removed the rest

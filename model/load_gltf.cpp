@@ -129,10 +129,10 @@ Wrap wrapOf(int mode) {
   return Wrap::Repeat;
 }
 
-Transform nodeTransform(const tinygltf::Node& n) {
-  Transform t;
+glm::dmat4 nodeTransform(const tinygltf::Node& n) {
+  glm::dmat4 t(1.0);
   if (n.matrix.size() == 16) {
-    for (int i = 0; i < 16; ++i) t.m[i] = n.matrix[i];
+    for (int i = 0; i < 16; ++i) t[i / 4][i % 4] = n.matrix[size_t(i)];
     return t;
   }
   // T * R * S, glTF 2.0 §3.5.3; the quaternion is used as stored (no trigonometry).
@@ -148,8 +148,8 @@ Transform nodeTransform(const tinygltf::Node& n) {
                        2 * (x * y - z * w),     1 - 2 * (x * x + z * z), 2 * (y * z + x * w),
                        2 * (x * z + y * w),     2 * (y * z - x * w),     1 - 2 * (x * x + y * y)};  // column-major
   for (int c = 0; c < 3; ++c)
-    for (int row = 0; row < 3; ++row) t.m[c * 4 + row] = r[c * 3 + row] * s[c];
-  for (int i = 0; i < 3; ++i) t.m[12 + i] = tr[i];
+    for (int row = 0; row < 3; ++row) t[c][row] = r[c * 3 + row] * s[c];
+  for (int i = 0; i < 3; ++i) t[3][i] = tr[i];
   return t;
 }
 
@@ -174,7 +174,7 @@ class Builder {
         if (!child[i]) roots.push_back(int(i));
     }
     std::vector<bool> onPath(m_.nodes.size());
-    for (int r : roots) node(r, Transform{}, onPath, "/scenes/nodes");
+    for (int r : roots) node(r, glm::dmat4(1.0), onPath, "/scenes/nodes");
     if (defaultMaterial_ >= 0) out_.notes.push_back("primitives without a material use a default white material");
   }
 
@@ -223,13 +223,13 @@ class Builder {
     return uint32_t(defaultMaterial_);
   }
 
-  void node(int index, const Transform& parent, std::vector<bool>& onPath, const std::string& from) {
+  void node(int index, const glm::dmat4& parent, std::vector<bool>& onPath, const std::string& from) {
     if (index < 0 || size_t(index) >= m_.nodes.size())
       fail(path_, from, std::to_string(index) + " is not a node index");
     if (onPath[size_t(index)]) fail(path_, "/nodes/" + std::to_string(index), "the node hierarchy has a cycle");
     onPath[size_t(index)] = true;
     const tinygltf::Node& n = m_.nodes[size_t(index)];
-    const Transform world = parent * nodeTransform(n);
+    const glm::dmat4 world = compose(parent, nodeTransform(n));
     const std::string ptr = "/nodes/" + std::to_string(index);
     if (n.mesh >= 0) {
       if (size_t(n.mesh) >= m_.meshes.size())
@@ -244,7 +244,7 @@ class Builder {
   }
 
   void primitive(const tinygltf::Primitive& prim, const std::string& ptr, const std::string& name,
-                 const Transform& world) {
+                 const glm::dmat4& world) {
     const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
     if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
       ++skippedNonTriangles_;
@@ -268,11 +268,11 @@ class Builder {
     }
     const std::vector<float> p = reader_.floats(pos->second, 3, ptr + "/attributes/POSITION");
     const size_t nv = p.size() / 3;
-    const bool identity = world.isIdentity();
+    const bool identity = isIdentity(world);
     mesh.positions.resize(nv);
     for (size_t i = 0; i < nv; ++i) {
-      const Float3 v{p[i * 3], p[i * 3 + 1], p[i * 3 + 2]};
-      mesh.positions[i] = identity ? v : world.point(v);
+      const glm::vec3 v{p[i * 3], p[i * 3 + 1], p[i * 3 + 2]};
+      mesh.positions[i] = identity ? v : transformPoint(world, v);
     }
     const UvSource& uv = uv_[mesh.material];
     const auto tc = prim.attributes.find("TEXCOORD_" + std::to_string(uv.set));
@@ -303,8 +303,8 @@ class Builder {
       const std::vector<float> n = reader_.floats(nrm->second, 3, ptr + "/attributes/NORMAL");
       mesh.normals.resize(nv);
       for (size_t i = 0; i < nv; ++i) {
-        const Float3 v{n[i * 3], n[i * 3 + 1], n[i * 3 + 2]};
-        mesh.normals[i] = identity ? v : world.normal(v);
+        const glm::vec3 v{n[i * 3], n[i * 3 + 1], n[i * 3 + 2]};
+        mesh.normals[i] = identity ? v : transformNormal(world, v);
       }
     }
     std::vector<uint32_t> idx;
@@ -317,7 +317,7 @@ class Builder {
       idx.resize(nv);
       for (size_t i = 0; i < nv; ++i) idx[i] = uint32_t(i);
     }
-    const bool flip = world.det3() < 0.0;
+    const bool flip = det3(world) < 0.0;
     auto tri = [&](uint32_t a, uint32_t b, uint32_t c) {
       if (flip) std::swap(b, c);
       mesh.indices.insert(mesh.indices.end(), {a, b, c});

@@ -2,8 +2,10 @@
 // URIs, the double-precision node transform). Not a public interface.
 #pragma once
 
-#include <array>
-#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/matrix.hpp>
 #include <string>
 #include <string_view>
 
@@ -24,43 +26,47 @@ std::string resolveBeside(const std::string& modelPath, const std::string& relat
 void requireTextureFile(const std::string& modelPath, const std::string& what, const std::string& uri,
                         const std::string& resolved);
 
-// A column-major 4x4 affine transform in double (m[c * 4 + r]), as glTF and Assimp store them.
-struct Transform {
-  std::array<double, 16> m{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-  Transform operator*(const Transform& b) const {
-    Transform r;
-    for (int c = 0; c < 4; ++c)
-      for (int row = 0; row < 4; ++row) {
-        double s = 0.0;
-        for (int k = 0; k < 4; ++k) s = s + m[k * 4 + row] * b.m[c * 4 + k];
-        r.m[c * 4 + row] = s;
-      }
-    return r;
-  }
-  bool isIdentity() const { return *this == Transform{}; }
-  bool operator==(const Transform&) const = default;
-  Float3 point(const Float3& p) const {
-    const double x = p.x, y = p.y, z = p.z;
-    return {float(m[0] * x + m[4] * y + m[8] * z + m[12]), float(m[1] * x + m[5] * y + m[9] * z + m[13]),
-            float(m[2] * x + m[6] * y + m[10] * z + m[14])};
-  }
-  double det3() const {
-    return m[0] * (m[5] * m[10] - m[9] * m[6]) - m[4] * (m[1] * m[10] - m[9] * m[2]) +
-           m[8] * (m[1] * m[6] - m[5] * m[2]);
-  }
-  // Transforms a normal by the inverse transpose of the upper 3x3 (the cofactor matrix; the
-  // determinant's scale is removed by normalizing) and normalizes it (sqrt is correctly rounded).
-  Float3 normal(const Float3& n) const {
-    const double a = m[0], b = m[4], c = m[8], d = m[1], e = m[5], f = m[9], g = m[2], h = m[6], i = m[10];
-    const double cof[9] = {e * i - f * h,    -(d * i - f * g), d * h - e * g,    -(b * i - c * h), a * i - c * g,
-                           -(a * h - b * g), b * f - c * e,    -(a * f - c * d), a * e - b * d};
-    const double x = cof[0] * n.x + cof[1] * n.y + cof[2] * n.z;  // cof is row-major: C[r][c] = cof[r * 3 + c]
-    const double y = cof[3] * n.x + cof[4] * n.y + cof[5] * n.z;
-    const double z = cof[6] * n.x + cof[7] * n.y + cof[8] * n.z;
-    const double sign = det3() < 0.0 ? -1.0 : 1.0, len = std::sqrt(x * x + y * y + z * z);
-    if (!(len > 0.0)) return n;
-    return {float(sign * x / len), float(sign * y / len), float(sign * z / len)};
-  }
-};
+// Node transforms are glm::dmat4: column-major (m[c][r]) as glTF and Assimp store them, composed in
+// double and applied to float positions and normals.
+
+// parent * child as the loaders have always composed it: GLM's order ((p0 + p1) + p2) + p3 per entry,
+// with a zero entry always +0 (the sum used to start from +0.0, which differs from GLM's product only in
+// the sign of a zero result; adding +0.0 turns -0 into +0 and changes nothing else). A -0 would reach
+// the stored positions' bits through transformPoint.
+inline glm::dmat4 compose(const glm::dmat4& parent, const glm::dmat4& child) {
+  glm::dmat4 r = parent * child;
+  for (int c = 0; c < 4; ++c)
+    for (int row = 0; row < 4; ++row) r[c][row] = r[c][row] + 0.0;
+  return r;
+}
+
+inline bool isIdentity(const glm::dmat4& m) { return m == glm::dmat4(1.0); }
+
+// m * (p, 1) rounded to float once: ((m0·x + m1·y) + m2·z) + m3 per component. (GLM's m * vec4 adds
+// (m0·x + m1·y) + (m2·z + m3·w), which gives other bits.)
+inline glm::vec3 transformPoint(const glm::dmat4& m, const glm::vec3& p) {
+  const glm::dvec3 q(p);
+  return glm::vec3(glm::dvec3(m[0]) * q.x + glm::dvec3(m[1]) * q.y + glm::dvec3(m[2]) * q.z + glm::dvec3(m[3]));
+}
+
+// The determinant of the upper 3x3 (GLM's cofactor expansion along the first row).
+inline double det3(const glm::dmat4& m) { return glm::determinant(glm::dmat3(m)); }
+
+// Transforms a normal by the inverse transpose of the upper 3x3 (the cofactor matrix; the
+// determinant's scale is removed by normalizing) and normalizes it (sqrt is correctly rounded).
+// A normal that maps to zero length is returned unchanged.
+inline glm::vec3 transformNormal(const glm::dmat4& m, const glm::vec3& n) {
+  // Row-major names of the upper 3x3: a b c / d e f / g h i.
+  const double a = m[0][0], b = m[1][0], c = m[2][0], d = m[0][1], e = m[1][1], f = m[2][1], g = m[0][2], h = m[1][2],
+               i = m[2][2];
+  const glm::dvec3 cof0(e * i - f * h, -(d * i - f * g), d * h - e * g);  // the cofactor matrix's rows
+  const glm::dvec3 cof1(-(b * i - c * h), a * i - c * g, -(a * h - b * g));
+  const glm::dvec3 cof2(b * f - c * e, -(a * f - c * d), a * e - b * d);
+  const glm::dvec3 dn(n);
+  const glm::dvec3 v(glm::dot(cof0, dn), glm::dot(cof1, dn), glm::dot(cof2, dn));
+  const double sign = det3(m) < 0.0 ? -1.0 : 1.0, len = glm::length(v);
+  if (!(len > 0.0)) return n;
+  return glm::vec3(sign * v / len);
+}
 
 }  // namespace tessera::model::detail

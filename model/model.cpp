@@ -10,17 +10,19 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <glm/common.hpp>
 
-#include "model/loaders.h"
 #include "base/error.h"
+#include "model/loaders.h"
 
 namespace tessera::model {
 
 namespace fs = std::filesystem;
 
-void Bounds::add(const Float3& p) {
-  min = {std::min(min.x, p.x), std::min(min.y, p.y), std::min(min.z, p.z)};
-  max = {std::max(max.x, p.x), std::max(max.y, p.y), std::max(max.z, p.z)};
+// glm::min / glm::max are (y < x) ? y : x and (x < y) ? y : x per component, as std::min / std::max.
+void Bounds::add(const glm::vec3& p) {
+  min = glm::min(min, p);
+  max = glm::max(max, p);
 }
 
 size_t Model::triangleCount() const {
@@ -89,7 +91,7 @@ Model loadModel(const std::string& path) {
     m = detail::loadAssimp(path);
   m.source = path;
   for (const Mesh& mesh : m.meshes)
-    for (const Float3& p : mesh.positions) m.bounds.add(p);
+    for (const glm::vec3& p : mesh.positions) m.bounds.add(p);
   return m;
 }
 
@@ -198,7 +200,7 @@ Image loadTexture(const Model& model, size_t index) {
   requireIndex(model, index);
   if (model.textures[index].rawRGBA) {
     const TextureRef& t = model.textures[index];
-    Image img{t.rawWidth, t.rawHeight, {}, 4, false};
+    Image img{{t.rawWidth, t.rawHeight, {}}, 4, false};
     if (!t.bytes || t.bytes->size() != size_t(t.rawWidth) * t.rawHeight * 4)
       throw Error(describe(model, index) + ": raw texel data has the wrong size");
     img.rgba = *t.bytes;

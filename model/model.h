@@ -12,12 +12,14 @@
 // Conventions (every loader produces them)
 // - Positions are in the file's units with every node transform applied: the hierarchy is composed
 //   in double and the result stored as float. glTF is Y-up; other formats keep their own axes.
+// - Positions and normals are glm::vec3, texcoords glm::vec2 (x = u, y = v).
 // - Texcoords are stored as float exactly as the file gives them after the texture transform (glTF
 //   KHR_texture_transform, MTL -o/-s): never clamped or wrapped, so repeat counts in the thousands
 //   survive. v follows glTF: v = 0 is the first (top) row of the image file. Loaders for formats
 //   whose v points up (OBJ, Assimp) store 1 - v.
-// - Image rows are in file order (top row first). With the v convention above, uploading them to GL
-//   as-is (first file row = GL row 0, t = 0) maps every texcoord to the texel the file meant.
+// - Image rows are in file order (top row first), which is RgbaImage's row 0 (base/rgba_image.h). With
+//   the v convention above, uploading them to GL as-is (first file row = GL row 0, t = 0) maps every
+//   texcoord to the texel the file meant.
 // - Triangles are uint32 index triples, counter-clockwise front faces (a transform with a negative
 //   determinant flips the winding back). Strips and fans are converted; points and lines are dropped
 //   with a note.
@@ -25,23 +27,20 @@
 
 #include <array>
 #include <cstdint>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "base/rgba_image.h"
+
 namespace tessera::model {
 
-struct Float2 {
-  float u = 0.0f, v = 0.0f;
-};
-struct Float3 {
-  float x = 0.0f, y = 0.0f, z = 0.0f;
-};
-
 struct Bounds {
-  Float3 min{1e30f, 1e30f, 1e30f}, max{-1e30f, -1e30f, -1e30f};
+  glm::vec3 min{1e30f, 1e30f, 1e30f}, max{-1e30f, -1e30f, -1e30f};
   bool empty() const { return min.x > max.x; }
-  void add(const Float3& p);
+  void add(const glm::vec3& p);
 };
 
 // How the base colour's alpha is used (glTF 2.0 material.alphaMode).
@@ -63,9 +62,9 @@ struct Material {
 struct Mesh {
   std::string name;
   uint32_t material = 0;  // index into Model::materials (always valid)
-  std::vector<Float3> positions;
-  std::vector<Float2> texcoords;  // the set the material's texture uses (TEXCOORD_n / UV channel n)
-  std::vector<Float3> normals;
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec2> texcoords;  // the set the material's texture uses (TEXCOORD_n / UV channel n)
+  std::vector<glm::vec3> normals;
   std::vector<uint32_t> indices;  // 3 per triangle
   size_t triangleCount() const { return indices.size() / 3; }
 };
@@ -100,10 +99,8 @@ struct Model {
   size_t triangleCount() const;
 };
 
-// A decoded texture: RGBA8, rows in file order (top row first), tightly packed.
-struct Image {
-  uint32_t width = 0, height = 0;
-  std::vector<uint8_t> rgba;
+// A decoded texture: an RgbaImage whose row 0 is the file's top row (file order), plus what the file said.
+struct Image : RgbaImage {
   int fileChannels = 0;    // channels the file stores (1 grey, 2 grey+alpha, 3 RGB, 4 RGBA)
   bool usesAlpha = false;  // some texel has alpha < 255
 };

@@ -13,7 +13,7 @@ uint64_t MipImage::bytes() const {
   return b;
 }
 
-MipImage makeMipImage(const model::Image& img) {
+MipImage makeMipImage(const RgbaImage& img) {
   MipImage m;
   m.width = img.width;
   m.height = img.height;

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "base/rgba_image.h"
 #include "model/model.h"
 
 namespace tessera::mta {
@@ -22,7 +23,7 @@ struct MipImage {
   std::vector<std::vector<uint8_t>> levels;
   uint64_t bytes() const;
 };
-MipImage makeMipImage(const model::Image& img);
+MipImage makeMipImage(const RgbaImage& img);
 
 // (u, v) of atlas texel centre (x + ½, y + ½): u = u0 + ux·(x + ½) + uy·(y + ½), same for v.
 struct AffineMap {

@@ -132,9 +132,9 @@ struct OriginalPacker {
 
 // Leaf-local atlas texel position of vertex k of triangle t (layer-0 entry e).
 std::pair<double, double> localTexel(const Scene& s, const Tree& tree, const AtlasEntry& e, uint32_t t, int k) {
-  const Float2* uvs = &tree.geometry.layers[0].uv[t * 3];
+  const glm::vec2* uvs = &tree.geometry.layers[0].uv[t * 3];
   const auto shift = repeatShift(uvs, s.textures[e.texture].wrapS, s.textures[e.texture].wrapT);
-  const double u = float(double(uvs[k].u) - shift.first), v = float(double(uvs[k].v) - shift.second);
+  const double u = float(double(uvs[k].x) - shift.first), v = float(double(uvs[k].y) - shift.second);
   const double sw = e.source.width(), sh = e.source.height();
   return {e.x + (sw > 0.0 ? (u - e.source.u0) / sw * e.w : 0.5 * e.w),
           e.y + (sh > 0.0 ? (v - e.source.v0) / sh * e.h : 0.5 * e.h)};
@@ -165,15 +165,15 @@ void renderLeaf(const Scene& s, const Tree& tree, uint32_t node, uint32_t layer,
       const double ax = p1.first - p0.first, ay = p1.second - p0.second, bx = p2.first - p0.first, by = p2.second - p0.second;
       const double det = ax * by - bx * ay;
       if (!(std::fabs(det) > 1e-9)) continue;
-      const Float2 *uv = &L.uv[t * 3];
-      const double du1 = double(uv[1].u) - uv[0].u, dv1 = double(uv[1].v) - uv[0].v;
-      const double du2 = double(uv[2].u) - uv[0].u, dv2 = double(uv[2].v) - uv[0].v;
+      const glm::vec2* uv = &L.uv[t * 3];
+      const double du1 = double(uv[1].x) - uv[0].x, dv1 = double(uv[1].y) - uv[0].y;
+      const double du2 = double(uv[2].x) - uv[0].x, dv2 = double(uv[2].y) - uv[0].y;
       // (x, y) - p0 = a·(ax, ay) + b·(bx, by); uv = uv0 + a·d1 + b·d2.
       AffineMap m;
       m.ux = (du1 * by - du2 * ay) / det, m.uy = (du2 * ax - du1 * bx) / det;
       m.vx = (dv1 * by - dv2 * ay) / det, m.vy = (dv2 * ax - dv1 * bx) / det;
-      m.u0 = uv[0].u - m.ux * p0.first - m.uy * p0.second;
-      m.v0 = uv[0].v - m.vx * p0.first - m.vy * p0.second;
+      m.u0 = uv[0].x - m.ux * p0.first - m.uy * p0.second;
+      m.v0 = uv[0].y - m.vx * p0.first - m.vy * p0.second;
       const SceneTexture& tex = s.textures[L.texture[t]];
       fillArea(out.data(), A, C, e.x, e.y, e.w, e.h, m, cache.get(tex.image), tex.wrapS, tex.wrapT);
       break;
@@ -207,7 +207,7 @@ BuildReport buildMta(const Scene& scene, const BuildParams& params, const std::s
   const Geometry& in = scene.geometry;
   if (in.triangleCount() == 0) throw Error("mta: scene '" + scene.name + "' has no triangles");
   double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-  for (const Float3& v : in.positions) {
+  for (const glm::vec3& v : in.positions) {
     const double c[3] = {v.x, v.y, v.z};
     for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
   }

@@ -1,6 +1,7 @@
 #include "mta/camera.h"
 
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <string>
 
 #include "base/error.h"
@@ -9,90 +10,65 @@ namespace tessera::mta {
 
 namespace {
 
-using V3 = std::array<double, 3>;
-
-V3 sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const V3& a, const V3& b) { return (a[0] * b[0] + a[1] * b[1]) + a[2] * b[2]; }
-V3 cross(const V3& a, const V3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-// sqrt is correctly rounded (IEEE 754), so this is as deterministic as + - * /.
-V3 normalized(const V3& v) {
-  const double l = std::sqrt(dot(v, v));
-  return {v[0] / l, v[1] / l, v[2] / l};
-}
-
-std::array<float, 16> toFloat(const std::array<double, 16>& m) {
-  std::array<float, 16> r;
-  for (int i = 0; i < 16; ++i) r[i] = float(m[i]);
-  return r;
-}
-
-// Column-major product a * b with a fixed summation order (k = 0..3), so the bits never depend on the
-// compiler's choice of association.
-std::array<double, 16> multiply(const std::array<double, 16>& a, const std::array<double, 16>& b) {
-  std::array<double, 16> r{};
-  for (int c = 0; c < 4; ++c)
-    for (int row = 0; row < 4; ++row)
-      r[c * 4 + row] =
-          ((a[0 * 4 + row] * b[c * 4 + 0] + a[1 * 4 + row] * b[c * 4 + 1]) + a[2 * 4 + row] * b[c * 4 + 2]) +
-          a[3 * 4 + row] * b[c * 4 + 3];
-  return r;
-}
+// v / |v|: GLM's normalize multiplies by an inverse square root and gives other bits. sqrt is correctly
+// rounded (IEEE 754), so this is as deterministic as + - * /. glm::dot is (x·x' + y·y') + z·z' and
+// glm::cross the usual a.y·b.z - a.z·b.y, ...: the orders this file has always used.
+glm::dvec3 normalized(const glm::dvec3& v) { return v / glm::length(v); }
 
 }  // namespace
 
-std::array<double, 16> viewMatrixD(const Camera& c) {
-  const V3 f = normalized(sub(c.target, c.eye));
-  const V3 s = normalized(cross(f, c.up));
-  const V3 u = cross(s, f);  // unit: s and f are orthonormal
-  std::array<double, 16> m{};
+glm::dmat4 viewMatrixD(const Camera& c) {
+  const glm::dvec3 f = normalized(c.target - c.eye);
+  const glm::dvec3 s = normalized(glm::cross(f, c.up));
+  const glm::dvec3 u = glm::cross(s, f);  // unit: s and f are orthonormal
+  glm::dmat4 m(0.0);
   for (int i = 0; i < 3; ++i) {
-    m[i * 4 + 0] = s[i];
-    m[i * 4 + 1] = u[i];
-    m[i * 4 + 2] = -f[i];
+    m[i][0] = s[i];
+    m[i][1] = u[i];
+    m[i][2] = -f[i];
   }
-  m[12] = -dot(s, c.eye);
-  m[13] = -dot(u, c.eye);
-  m[14] = dot(f, c.eye);
-  m[15] = 1.0;
+  m[3][0] = -glm::dot(s, c.eye);
+  m[3][1] = -glm::dot(u, c.eye);
+  m[3][2] = glm::dot(f, c.eye);
+  m[3][3] = 1.0;
   return m;
 }
 
-std::array<double, 16> projectionMatrixD(const Camera& c, uint32_t width, uint32_t height) {
+glm::dmat4 projectionMatrixD(const Camera& c, uint32_t width, uint32_t height) {
   // aspect = w / h, tan(fovY/2) = tan(fovX/2) / aspect: the horizontal angle is the one the thesis's
   // f_proj is defined with (params.h), so it must stay fixed when the window's shape changes.
   const double aspect = double(width) / double(height);
   const double n = c.nearPlane, f = c.farPlane;
-  std::array<double, 16> m{};
-  m[0] = 1.0 / c.tanHalfFovX;
-  m[5] = aspect / c.tanHalfFovX;
-  m[10] = (f + n) / (n - f);
-  m[11] = -1.0;
-  m[14] = 2.0 * f * n / (n - f);
+  glm::dmat4 m(0.0);
+  m[0][0] = 1.0 / c.tanHalfFovX;
+  m[1][1] = aspect / c.tanHalfFovX;
+  m[2][2] = (f + n) / (n - f);
+  m[2][3] = -1.0;
+  m[3][2] = 2.0 * f * n / (n - f);
   return m;
 }
 
-std::array<double, 16> viewProjectionD(const Camera& c, uint32_t width, uint32_t height) {
-  return multiply(projectionMatrixD(c, width, height), viewMatrixD(c));
+glm::dmat4 viewProjectionD(const Camera& c, uint32_t width, uint32_t height) {
+  return projectionMatrixD(c, width, height) * viewMatrixD(c);
 }
 
-std::array<float, 16> viewMatrix(const Camera& c) { return toFloat(viewMatrixD(c)); }
-std::array<float, 16> projectionMatrix(const Camera& c, uint32_t width, uint32_t height) {
-  return toFloat(projectionMatrixD(c, width, height));
+glm::mat4 viewMatrix(const Camera& c) { return glm::mat4(viewMatrixD(c)); }
+glm::mat4 projectionMatrix(const Camera& c, uint32_t width, uint32_t height) {
+  return glm::mat4(projectionMatrixD(c, width, height));
 }
-std::array<float, 16> viewProjection(const Camera& c, uint32_t width, uint32_t height) {
-  return toFloat(viewProjectionD(c, width, height));
+glm::mat4 viewProjection(const Camera& c, uint32_t width, uint32_t height) {
+  return glm::mat4(viewProjectionD(c, width, height));
 }
 
 Frustum frustumOf(const Camera& c, uint32_t width, uint32_t height) {
   // Gribb & Hartmann: a clip-space point is inside iff -w <= x, y, z <= w, i.e. row3 ± row_i >= 0 applied
   // to the world point. Extracted from the double matrix so that culling is not blurred by float rounding.
-  const std::array<double, 16> m = viewProjectionD(c, width, height);
-  auto row = [&](int r) { return std::array<double, 4>{m[0 + r], m[4 + r], m[8 + r], m[12 + r]}; };
-  const auto r0 = row(0), r1 = row(1), r2 = row(2), r3 = row(3);
-  auto plane = [&](const std::array<double, 4>& a, double sign) {
-    Plane p{r3[0] + sign * a[0], r3[1] + sign * a[1], r3[2] + sign * a[2], r3[3] + sign * a[3]};
+  const glm::dmat4 m = viewProjectionD(c, width, height);
+  auto row = [&](int r) { return glm::dvec4(m[0][r], m[1][r], m[2][r], m[3][r]); };
+  const glm::dvec4 r0 = row(0), r1 = row(1), r2 = row(2), r3 = row(3);
+  auto plane = [&](const glm::dvec4& a, double sign) {
+    const glm::dvec4 q = r3 + sign * a;
+    Plane p{q.x, q.y, q.z, q.w};
     const double l = std::sqrt((p.a * p.a + p.b * p.b) + p.c * p.c);
     p.a /= l, p.b /= l, p.c /= l, p.d /= l;
     return p;
@@ -113,7 +89,7 @@ bool outsideFrustum(const Frustum& f, const std::array<float, 6>& b) {
   return false;
 }
 
-double distanceToBox(const std::array<double, 3>& eye, const std::array<float, 6>& b) {
+double distanceToBox(const glm::dvec3& eye, const std::array<float, 6>& b) {
   double s = 0.0;
   for (int k = 0; k < 3; ++k) {
     const double lo = b[k], hi = b[k + 3];
@@ -127,19 +103,19 @@ void validate(const Camera& c, std::string_view where) {
   auto bad = [&](const char* field, const std::string& why) {
     throw Error(std::string(where) + ": camera " + field + ": " + why);
   };
-  auto finite3 = [](const V3& v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); };
+  auto finite3 = [](const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
   if (!finite3(c.eye)) bad("eye", "must be finite");
   if (!finite3(c.target)) bad("target", "must be finite");
   if (!finite3(c.up)) bad("up", "must be finite");
-  const V3 dir = sub(c.target, c.eye);
-  const double dd = dot(dir, dir), uu = dot(c.up, c.up);
+  const glm::dvec3 dir = c.target - c.eye;
+  const double dd = glm::dot(dir, dir), uu = glm::dot(c.up, c.up);
   if (!(dd > 0.0)) bad("target", "equals the eye (no view direction)");
   if (!std::isfinite(dd)) bad("target", "is too far from the eye");
   if (!(uu > 0.0) || !std::isfinite(uu)) bad("up", "must be a non-zero finite vector");
   // |dir x up|² = |dir|²|up|² sin²θ: reject angles below ~1e-6 rad, where the view's side axis would be
   // mostly rounding noise.
-  const V3 x = cross(dir, c.up);
-  if (!(dot(x, x) > 1e-12 * dd * uu)) bad("up", "is parallel to the view direction");
+  const glm::dvec3 x = glm::cross(dir, c.up);
+  if (!(glm::dot(x, x) > 1e-12 * dd * uu)) bad("up", "is parallel to the view direction");
   if (!std::isfinite(c.tanHalfFovX) || !(c.tanHalfFovX > 0.0)) bad("tan_half_fov", "must be a finite number > 0");
   if (!std::isfinite(c.nearPlane) || !(c.nearPlane > 0.0)) bad("near", "must be a finite number > 0");
   if (!std::isfinite(c.farPlane) || !(c.farPlane > c.nearPlane)) bad("far", "must be finite and greater than near");

@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <glm/geometric.hpp>
 #include <sstream>
 
 #include "base/atomic_file.h"
@@ -21,15 +22,13 @@ namespace tessera::mta {
 
 namespace {
 
-using V3 = std::array<double, 3>;
-
 constexpr uint32_t kMaxFrames = 1000000;  // a sanity bound: 96 MB of cameras
 constexpr double kTwoPi = 2.0 * kPi;
 
-V3 lerp(const V3& a, const V3& b, double s) {
+glm::dvec3 lerp(const glm::dvec3& a, const glm::dvec3& b, double s) {
   // (1 - s)·a + s·b rather than a + s·(b - a): s = 1 gives exactly b, so consecutive segments meet
   // in the same bits at their shared keyframe.
-  return {(1.0 - s) * a[0] + s * b[0], (1.0 - s) * a[1] + s * b[1], (1.0 - s) * a[2] + s * b[2]};
+  return (1.0 - s) * a + s * b;
 }
 double smoothstep(double t) { return t * t * (3.0 - 2.0 * t); }
 
@@ -37,19 +36,17 @@ double smoothstep(double t) { return t * t * (3.0 - 2.0 * t); }
 // min y, u is the long horizontal axis, v the short one, E the long horizontal extent.
 struct Layout {
   double cx, cz, minY, maxY;
-  V3 u, v;      // unit horizontal axes (x / z)
-  double E, S;  // long and short horizontal extent (E > 0)
+  glm::dvec3 u, v;  // unit horizontal axes (x / z)
+  double E, S;      // long and short horizontal extent (E > 0)
   double near, far;
   double ped;   // pedestrian eye height (absolute y)
   double look;  // distance of a horizontal look-at target ahead of the eye
 
-  V3 at(double du, double y, double dv) const {
-    return {(cx + du * u[0]) + dv * v[0], y, (cz + du * u[2]) + dv * v[2]};
+  glm::dvec3 at(double du, double y, double dv) const {
+    return {(cx + du * u.x) + dv * v.x, y, (cz + du * u.z) + dv * v.z};
   }
-  V3 ahead(const V3& eye, const V3& dir) const {
-    return {eye[0] + look * dir[0], eye[1] + look * dir[1], eye[2] + look * dir[2]};
-  }
-  Camera camera(const V3& eye, const V3& target) const {
+  glm::dvec3 ahead(const glm::dvec3& eye, const glm::dvec3& dir) const { return eye + look * dir; }
+  Camera camera(const glm::dvec3& eye, const glm::dvec3& target) const {
     Camera c;
     c.eye = eye;
     c.target = target;
@@ -71,8 +68,8 @@ Layout layoutOf(std::string_view name, const std::array<float, 6>& b) {
   l.minY = b[1];
   l.maxY = b[4];
   const bool xLong = ex >= ez;
-  l.u = xLong ? V3{1, 0, 0} : V3{0, 0, 1};
-  l.v = xLong ? V3{0, 0, 1} : V3{1, 0, 0};
+  l.u = xLong ? glm::dvec3{1, 0, 0} : glm::dvec3{0, 0, 1};
+  l.v = xLong ? glm::dvec3{0, 0, 1} : glm::dvec3{1, 0, 0};
   l.E = xLong ? ex : ez;
   l.S = xLong ? ez : ex;
   // A scene without horizontal extent (a tower, a point) still needs a path of some size.
@@ -96,32 +93,29 @@ Layout layoutOf(std::string_view name, const std::array<float, 6>& b) {
 struct Segment {
   double t0, t1;
   bool turn;
-  V3 eye0, target0, eye1, target1;  // Move
-  double yaw0, yaw1;                // Turn (eye0 is the eye)
+  glm::dvec3 eye0, target0, eye1, target1;  // Move
+  double yaw0, yaw1;                        // Turn (eye0 is the eye)
 };
 
 // The smallest distance R at which a camera at mid + R·back (back a unit vector), looking at mid, sees all
 // eight corners of the box: a corner p (relative to mid) at depth R + p·f is in view iff |p·s| <= tx·depth
 // and |p·t| <= ty·depth (s, t the view's right and up axes), i.e. R >= |p·s| / tx - p·f and likewise for t.
 // 5% margin.
-double overviewDistance(const Layout& l, const V3& back) {
+double overviewDistance(const Layout& l, const glm::dvec3& back) {
   const double tx = Camera{}.tanHalfFovX, ty = tx * 0.75;
-  const V3 f = {-back[0], -back[1], -back[2]};
-  auto cross = [](const V3& a, const V3& b) {
-    return V3{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-  };
-  auto dot = [](const V3& a, const V3& b) { return (a[0] * b[0] + a[1] * b[1]) + a[2] * b[2]; };
-  V3 s = cross(f, V3{0, 1, 0});
-  const double sl = std::sqrt(dot(s, s));
-  s = {s[0] / sl, s[1] / sl, s[2] / sl};
-  const V3 t = cross(s, f);
+  const glm::dvec3 f = -back;
+  // glm::cross and glm::dot ((x·x' + y·y') + z·z') in their usual orders; s / |s| rather than GLM's
+  // normalize, which multiplies by an inverse square root.
+  const glm::dvec3 side = glm::cross(f, glm::dvec3{0, 1, 0});
+  const glm::dvec3 s = side / glm::length(side);
+  const glm::dvec3 t = glm::cross(s, f);
   double R = 0.0;
   for (int k = 0; k < 8; ++k) {
     const double du = (k & 1 ? 0.5 : -0.5) * l.E, dv = (k & 2 ? 0.5 : -0.5) * l.S;
     const double dy = (k & 4 ? 0.5 : -0.5) * (l.maxY - l.minY);
-    const V3 p = {du * l.u[0] + dv * l.v[0], dy, du * l.u[2] + dv * l.v[2]};
-    const double pf = dot(p, f);
-    R = std::max(R, std::max(std::abs(dot(p, s)) / tx - pf, std::abs(dot(p, t)) / ty - pf));
+    const glm::dvec3 p = {du * l.u.x + dv * l.v.x, dy, du * l.u.z + dv * l.v.z};
+    const double pf = glm::dot(p, f);
+    R = std::max(R, std::max(std::abs(glm::dot(p, s)) / tx - pf, std::abs(glm::dot(p, t)) / ty - pf));
   }
   return 1.05 * std::max(R, 0.1 * l.E);  // never closer than 0.1 E, e.g. for a box without extent
 }
@@ -135,19 +129,19 @@ std::vector<Segment> thesisSegments(const Layout& l) {
   // The full overviews look at the box centre from 45° above the horizon (along +u, then along +v), from
   // the nearest distance at which every box corner is in view for the default 60° horizontal fov at the
   // CLI's default 4:3 frame (overviewDistance); for a flat city that is ~0.9 E above the ground.
-  const V3 mid = {l.cx, 0.5 * (l.minY + l.maxY), l.cz};
+  const glm::dvec3 mid = {l.cx, 0.5 * (l.minY + l.maxY), l.cz};
   const double c45 = std::sqrt(0.5);
-  const V3 back1 = {-c45 * l.u[0], c45, -c45 * l.u[2]}, back2 = {-c45 * l.v[0], c45, -c45 * l.v[2]};
+  const glm::dvec3 back1 = {-c45 * l.u.x, c45, -c45 * l.u.z}, back2 = {-c45 * l.v.x, c45, -c45 * l.v.z};
   const double R1 = overviewDistance(l, back1), R2 = overviewDistance(l, back2);
-  const V3 over1 = {mid[0] + R1 * back1[0], mid[1] + R1 * back1[1], mid[2] + R1 * back1[2]};  // looks along +u
-  const V3 over2 = {mid[0] + R2 * back2[0], mid[1] + R2 * back2[1], mid[2] + R2 * back2[2]};  // looks along +v
-  const V3 walkA = l.at(-0.35 * l.E, l.ped, 0), walkB = l.at(-0.05 * l.E, l.ped, 0);
-  const V3 roof1 = l.at(-0.1 * l.E, roof, 0.1 * l.S), roof2 = l.at(0.25 * l.E, roof, 0.1 * l.S);
-  const V3 spot = l.at(0.3 * l.E, l.ped, 0);
+  const glm::dvec3 over1 = mid + R1 * back1;  // looks along +u
+  const glm::dvec3 over2 = mid + R2 * back2;  // looks along +v
+  const glm::dvec3 walkA = l.at(-0.35 * l.E, l.ped, 0), walkB = l.at(-0.05 * l.E, l.ped, 0);
+  const glm::dvec3 roof1 = l.at(-0.1 * l.E, roof, 0.1 * l.S), roof2 = l.at(0.25 * l.E, roof, 0.1 * l.S);
+  const glm::dvec3 spot = l.at(0.3 * l.E, l.ped, 0);
   // Every pair of consecutive view directions has horizontal parts with a positive dot product, so the
   // interpolated direction never becomes vertical (parallel to up) and eye and target never meet.
   const double turnEnd = kTwoPi + 0.5 * kPi;  // 450°: ends looking along +v, towards over2's view
-  const V3 endTurn = l.ahead(spot, l.v);
+  const glm::dvec3 endTurn = l.ahead(spot, l.v);
   return {
       {0, 60, false, walkA, l.ahead(walkA, l.u), walkB, l.ahead(walkB, l.u), 0, 0},     // pedestrian walk
       {60, 120, false, walkB, l.ahead(walkB, l.u), over1, mid, 0, 0},                   // rapid rise to the overview
@@ -168,7 +162,7 @@ Camera thesisFrame(const Layout& l, const std::vector<Segment>& segs, double t) 
   if (!s.turn) return l.camera(lerp(s.eye0, s.eye1, w), lerp(s.target0, s.target1, w));
   const double yaw = (1.0 - w) * s.yaw0 + w * s.yaw1;
   const double c = detCos(yaw), sn = detSin(yaw);
-  const V3 dir = {c * l.u[0] + sn * l.v[0], 0.0, c * l.u[2] + sn * l.v[2]};
+  const glm::dvec3 dir = {c * l.u.x + sn * l.v.x, 0.0, c * l.u.z + sn * l.v.z};  // y: +0, not c·0 + sn·0
   return l.camera(s.eye0, l.ahead(s.eye0, dir));
 }
 
@@ -187,7 +181,7 @@ CameraPath thesisPath(const Layout& l, uint32_t n) {
 CameraPath orbitPath(const Layout& l, uint32_t n) {
   CameraPath p{"orbit", {}};
   const double r = 0.6 * l.E, y = l.minY + 0.35 * l.E;
-  const V3 centre = {l.cx, 0.5 * (l.minY + l.maxY), l.cz};
+  const glm::dvec3 centre = {l.cx, 0.5 * (l.minY + l.maxY), l.cz};
   for (uint32_t i = 0; i < n; ++i) {
     const double a = kTwoPi * double(i) / double(n);  // a closed loop: frame n would repeat frame 0
     p.frames.push_back(l.camera({l.cx + r * detCos(a), y, l.cz + r * detSin(a)}, centre));
@@ -199,7 +193,7 @@ CameraPath streetPath(const Layout& l, uint32_t n) {
   CameraPath p{"street", {}};
   for (uint32_t i = 0; i < n; ++i) {
     const double t = n == 1 ? 0.0 : double(i) / double(n - 1);
-    const V3 eye = l.at((t - 0.5) * 0.9 * l.E, l.ped, 0);  // constant walking speed from -0.45 E to 0.45 E
+    const glm::dvec3 eye = l.at((t - 0.5) * 0.9 * l.E, l.ped, 0);  // constant walking speed from -0.45 E to 0.45 E
     p.frames.push_back(l.camera(eye, l.ahead(eye, l.u)));
   }
   return p;

@@ -12,11 +12,11 @@ namespace tessera::mta {
 namespace {
 
 struct Tri {
-  Float3 p[3];
-  std::vector<Float2> uv;  // 3 per layer
+  glm::vec3 p[3];
+  std::vector<glm::vec2> uv;  // 3 per layer
 };
 
-AreaRequirement requirementOf(const Scene& s, int32_t tex, const Float3 p[3], const Float2 t[3], double fProj,
+AreaRequirement requirementOf(const Scene& s, int32_t tex, const glm::vec3 p[3], const glm::vec2 t[3], double fProj,
                               uint32_t border, double* uw, double* uh) {
   const TexelSize size = triangleTexelSize(p, t, fProj);
   TexRect rect;
@@ -30,10 +30,9 @@ AreaRequirement requirementOf(const Scene& s, int32_t tex, const Float3 p[3], co
   return requiredArea(size, rect, img.width, img.height, border, uw, uh);
 }
 
-Float3 mid(const Float3& a, const Float3& b) {
-  return {float(0.5 * (double(a.x) + b.x)), float(0.5 * (double(a.y) + b.y)), float(0.5 * (double(a.z) + b.z))};
-}
-Float2 mid(const Float2& a, const Float2& b) { return {float(0.5 * (double(a.u) + b.u)), float(0.5 * (double(a.v) + b.v))}; }
+// The midpoint in double, rounded to float once.
+glm::vec3 mid(const glm::vec3& a, const glm::vec3& b) { return glm::vec3(0.5 * (glm::dvec3(a) + glm::dvec3(b))); }
+glm::vec2 mid(const glm::vec2& a, const glm::vec2& b) { return glm::vec2(0.5 * (glm::dvec2(a) + glm::dvec2(b))); }
 
 // Splits `t` until no piece is critical; appends the pieces in order.
 void splitRecursive(const Scene& s, int32_t tex, const Tri& t, double fProj, const BuildParams& p, uint32_t depth,
@@ -52,8 +51,8 @@ void splitRecursive(const Scene& s, int32_t tex, const Tri& t, double fProj, con
   int best = 0;
   double bestLen = -1.0;
   for (int e = 0; e < 3; ++e) {
-    const Float2 &a = t.uv[e], &b = t.uv[(e + 1) % 3];
-    const double du = (double(b.u) - a.u) * sw, dv = (double(b.v) - a.v) * sh;
+    const glm::vec2 &a = t.uv[e], &b = t.uv[(e + 1) % 3];
+    const double du = (double(b.x) - a.x) * sw, dv = (double(b.y) - a.y) * sh;
     const double l = du * du + dv * dv;
     if (l > bestLen) bestLen = l, best = e;
   }
@@ -62,12 +61,12 @@ void splitRecursive(const Scene& s, int32_t tex, const Tri& t, double fProj, con
   Tri a, b;  // (v0, m, v2) and (m, v1, v2) with v0 = i0, v1 = i1: both keep the winding
   a.uv.resize(t.uv.size());
   b.uv.resize(t.uv.size());
-  const Float3 mp = mid(t.p[i0], t.p[i1]);
+  const glm::vec3 mp = mid(t.p[i0], t.p[i1]);
   a.p[0] = t.p[i0], a.p[1] = mp, a.p[2] = t.p[i2];
   b.p[0] = mp, b.p[1] = t.p[i1], b.p[2] = t.p[i2];
   for (size_t l = 0; l < layers; ++l) {
-    const Float2* u = &t.uv[l * 3];
-    const Float2 mu = mid(u[i0], u[i1]);
+    const glm::vec2* u = &t.uv[l * 3];
+    const glm::vec2 mu = mid(u[i0], u[i1]);
     a.uv[l * 3] = u[i0], a.uv[l * 3 + 1] = mu, a.uv[l * 3 + 2] = u[i2];
     b.uv[l * 3] = mu, b.uv[l * 3 + 1] = u[i1], b.uv[l * 3 + 2] = u[i2];
   }
@@ -139,7 +138,7 @@ Geometry handleCriticalTriangles(const Scene& s, const BuildParams& p, double dM
   Geometry out;
   out.layers.resize(layers);
   for (uint32_t t = 0; t < n; ++t) {
-    auto emit = [&](const Float3* pos, auto uvOf) {
+    auto emit = [&](const glm::vec3* pos, auto uvOf) {
       for (int k = 0; k < 3; ++k) out.positions.push_back(pos[k]);
       out.source.push_back(g.source[t]);
       out.alpha.push_back(g.alpha[t]);

@@ -80,7 +80,7 @@ RecordedFrame recordFrame(const MtaMeta& meta, const RuntimeGeometry& geometry, 
   cl.bindVertexBuffer(cl.createBuffer(BufferKind::Vertex, std::span<const uint8_t>(vb, geometry.vertices.size() * kStride)));
   cl.useProgram(cl.createProgram(params.idFrame ? "object_id" : "textured"));
   const auto mvp = viewProjection(view.camera, params.width, params.height);
-  cl.setUniforms(0, mvp);
+  cl.setUniforms(0, std::span<const float>(&mvp[0][0], 16));  // glm::mat4: 4 contiguous columns
 
   f.drawTexture.resize(plan.draws.size());
   if (params.idFrame) {

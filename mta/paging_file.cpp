@@ -7,15 +7,20 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <type_traits>
 
-#include "raster/command_list.h"
 #include "base/sha256.h"
+#include "raster/command_list.h"
 
 namespace tessera::mta {
 
 namespace {
 
 constexpr char kMagic[8] = {'T', 'E', 'S', 'S', 'M', 'T', 'A', '\x1a'};
+
+// Positions and texcoords are stored as the bytes of their glm vectors: 3 or 2 floats, no padding.
+static_assert(sizeof(glm::vec3) == 12 && sizeof(glm::vec2) == 8 && std::is_trivially_copyable_v<glm::vec3> &&
+              std::is_trivially_copyable_v<glm::vec2>);
 
 // Little-endian serialization (the only hosts are little-endian x86-64; memcpy keeps it explicit).
 struct Out {
@@ -203,7 +208,7 @@ MtaMeta deserialize(const std::vector<uint8_t>& bytes, const std::string& path) 
       n.imageFirst = d.imageFirst, n.imageCount = d.imageCount;
       t.nodes.push_back(n);
     }
-    t.geometry.positions = in.arr<Float3>("tree.positions");
+    t.geometry.positions = in.arr<glm::vec3>("tree.positions");
     const uint64_t tris = t.geometry.positions.size() / 3;
     if (t.geometry.positions.size() % 3) in.fail("tree.positions", "not 3 per triangle");
     t.geometry.source = in.arr<uint32_t>("tree.source", tris);
@@ -211,9 +216,9 @@ MtaMeta deserialize(const std::vector<uint8_t>& bytes, const std::string& path) 
     t.geometry.layers.resize(m.layerCount);
     for (uint32_t l = 0; l < m.layerCount; ++l) {
       t.geometry.layers[l].texture = in.arr<int32_t>("tree.layer.texture", tris);
-      t.geometry.layers[l].uv = in.arr<Float2>("tree.layer.uv", tris * 3);
+      t.geometry.layers[l].uv = in.arr<glm::vec2>("tree.layer.uv", tris * 3);
     }
-    t.atlasUV = in.arr<Float2>("tree.atlas_uv", tris * 3);
+    t.atlasUV = in.arr<glm::vec2>("tree.atlas_uv", tris * 3);
     t.leafImages = in.arr<uint32_t>("tree.leaf_images");
     t.atlasBlocks = in.arr<uint32_t>("tree.atlas_blocks", uint64_t(t.nodes.size()) * m.layerCount);
     m.trees.push_back(std::move(t));
@@ -258,7 +263,7 @@ void validateMeta(const MtaMeta& m, const std::string& path, uint64_t metaOffset
     const uint64_t tris = t.geometry.triangleCount();
     if (t.alpha > 1) fail(tf, "alpha must be 0 or 1");
     if (t.nodes.empty()) fail(tf, "no nodes");
-    for (const Float3& v : t.geometry.positions)
+    for (const glm::vec3& v : t.geometry.positions)
       if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) fail(tf + "/positions", "non-finite value");
     for (uint32_t l = 0; l < m.layerCount; ++l)
       for (int32_t x : t.geometry.layers[l].texture)

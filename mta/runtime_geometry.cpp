@@ -53,10 +53,9 @@ RuntimeGeometry buildRuntimeGeometry(const MtaMeta& meta) {
         }
         for (int v = 0; v < 3; ++v) {
           RuntimeVertex& rv = g.vertices[size_t(dst) * 3 + v];
-          const Float3& p = t.geometry.positions[size_t(src) * 3 + v];
-          rv.pos[0] = p.x, rv.pos[1] = p.y, rv.pos[2] = p.z;
-          rv.atlasUV[0] = t.atlasUV[size_t(src) * 3 + v].u, rv.atlasUV[1] = t.atlasUV[size_t(src) * 3 + v].v;
-          rv.origUV[0] = layer0.uv[size_t(src) * 3 + v].u, rv.origUV[1] = layer0.uv[size_t(src) * 3 + v].v;
+          rv.pos = t.geometry.positions[size_t(src) * 3 + v];
+          rv.atlasUV = t.atlasUV[size_t(src) * 3 + v];
+          rv.origUV = layer0.uv[size_t(src) * 3 + v];
           rv.triangle = dst;
           rv.pad = 0;
         }

@@ -12,7 +12,10 @@
 // would be bound to further texture units by a program that reads them.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 #include <vector>
 
 #include "mta/paging_file.h"
@@ -21,12 +24,14 @@ namespace tessera::mta {
 
 // 36 bytes; the vertex layouts of frame_recorder.cpp depend on these offsets.
 struct RuntimeVertex {
-  float pos[3];
-  float atlasUV[2];  // root-atlas coordinates (scaled by 2^level in the program's texture matrix)
-  float origUV[2];   // original texture coordinates, unwrapped
-  uint32_t triangle; // global triangle index (object_id frames; texel analysis)
+  glm::vec3 pos;
+  glm::vec2 atlasUV;  // root-atlas coordinates (scaled by 2^level in the program's texture matrix)
+  glm::vec2 origUV;   // original texture coordinates, unwrapped
+  uint32_t triangle;  // global triangle index (object_id frames; texel analysis)
   uint32_t pad;
 };
+static_assert(sizeof(RuntimeVertex) == 36 && offsetof(RuntimeVertex, atlasUV) == 12 &&
+              offsetof(RuntimeVertex, origUV) == 20 && offsetof(RuntimeVertex, triangle) == 28);
 
 // A run of triangles [first, first + count) in global triangle order using one original texture.
 struct TextureRun {

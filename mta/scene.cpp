@@ -21,12 +21,12 @@ void Scene::validate() const {
       if (L.texture[t] < -1 || L.texture[t] >= int64_t(textures.size()))
         fail("layer " + std::to_string(l) + " triangle " + std::to_string(t) + ": texture " + std::to_string(L.texture[t]) + " out of range");
       for (int k = 0; k < 3; ++k)
-        if (!std::isfinite(L.uv[t * 3 + k].u) || !std::isfinite(L.uv[t * 3 + k].v))
+        if (!std::isfinite(L.uv[t * 3 + k].x) || !std::isfinite(L.uv[t * 3 + k].y))
           fail("layer " + std::to_string(l) + " triangle " + std::to_string(t) + ": non-finite texcoord");
     }
   }
   for (size_t i = 0; i < geometry.positions.size(); ++i) {
-    const Float3& p = geometry.positions[i];
+    const glm::vec3& p = geometry.positions[i];
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) fail("triangle " + std::to_string(i / 3) + ": non-finite position");
   }
   for (size_t t = 0; t < textures.size(); ++t) {
@@ -66,7 +66,7 @@ Scene sceneFromModel(std::shared_ptr<const model::Model> m) {
       for (int k = 0; k < 3; ++k) {
         const uint32_t idx = mesh.indices[t * 3 + k];
         g.positions.push_back(mesh.positions[idx]);
-        g.layers[0].uv.push_back(tex >= 0 ? mesh.texcoords[idx] : Float2{});
+        g.layers[0].uv.push_back(tex >= 0 ? mesh.texcoords[idx] : glm::vec2{});
       }
       g.layers[0].texture.push_back(tex);
       g.source.push_back(uint32_t(g.source.size()));

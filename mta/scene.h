@@ -5,22 +5,22 @@
 // lazy image access (one image decoded at a time through the callback).
 // Does not implement: image decoding (model/), the build (build.h).
 //
-// Conventions: texcoords follow model/model.h (v = 0 is the first stored image row), are never
-// clamped or wrapped. Layer 0 defines the atlas parameterization; layers 1.. share it (§5.1.3).
+// Conventions: positions are glm::vec3, texcoords glm::vec2 (x = u, y = v). Texcoords follow
+// model/model.h (v = 0 is the first stored image row), are never clamped or wrapped. Layer 0 defines
+// the atlas parameterization; layers 1.. share it (§5.1.3).
 // A triangle with texture -1 in layer 0 is untextured: it is placed in the tree but gets no atlas area.
 #pragma once
 
 #include <cstdint>
 #include <functional>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 #include <string>
 #include <vector>
 
 #include "model/model.h"
 
 namespace tessera::mta {
-
-using model::Float2;
-using model::Float3;
 
 // An input texture: an image plus its addressing (glTF sampler), because the same image sampled with
 // REPEAT and with CLAMP fills the atlas differently.
@@ -36,12 +36,12 @@ struct SceneImage {
 
 struct SceneLayer {
   std::vector<int32_t> texture;  // per triangle: index into Scene::textures, -1 = none
-  std::vector<Float2> uv;        // 3 per triangle
+  std::vector<glm::vec2> uv;     // 3 per triangle (x = u, y = v)
 };
 
 // Triangle soup. Everything per triangle is indexed the same way.
 struct Geometry {
-  std::vector<Float3> positions;  // 3 per triangle, counter-clockwise
+  std::vector<glm::vec3> positions;  // 3 per triangle, counter-clockwise
   std::vector<uint32_t> source;   // per triangle: the input triangle it came from (critical splits keep it)
   std::vector<uint8_t> alpha;     // per triangle: 1 = RGBA tree (material alpha mode is MASK or BLEND), 0 = RGB
   std::vector<SceneLayer> layers;  // at least one

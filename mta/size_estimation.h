@@ -27,12 +27,12 @@ struct TexelSize {
 // collinear with a non-degenerate longest edge e = (ti, tj) -> |s_world| = |t_world| = |vi - vj| / |ti - tj|.
 // World degeneracy uses a relative tolerance of 1e-12 on the doubled area; texture degeneracy 1e-3
 // (|det(t1 - t0, t2 - t0)| <= 1e-3 · longest texture edge², a Tessera choice, docs/mta-build.md). Arithmetic is IEEE double (sqrt only).
-TexelSize triangleTexelSize(const Float3 v[3], const Float2 t[3], double fProj);
+TexelSize triangleTexelSize(const glm::vec3 v[3], const glm::vec2 t[3], double fProj);
 
 // The texcoord bounding rectangle A_tex (texture space, unbounded: repetition kept).
 struct TexRect {
   double u0 = 1e300, v0 = 1e300, u1 = -1e300, v1 = -1e300;
-  void add(const Float2& t);
+  void add(const glm::vec2& t);
   bool empty() const { return u0 > u1; }
   double width() const { return u1 - u0; }
   double height() const { return v1 - v0; }
@@ -59,6 +59,6 @@ AreaRequirement requiredArea(const TexelSize& size, const TexRect& atex, uint32_
 // [0, 2) (MIRRORED_REPEAT); 0 for CLAMP_TO_EDGE. Sampling with the wrap mode is unchanged by it, and it
 // keeps A_tex of a node small when its triangles use a repeated texture at different integer offsets
 // (a Tessera choice, docs/mta-build.md). Atlas texcoords are computed from t - shift.
-std::pair<double, double> repeatShift(const Float2 t[3], model::Wrap wrapS, model::Wrap wrapT);
+std::pair<double, double> repeatShift(const glm::vec2 t[3], model::Wrap wrapS, model::Wrap wrapT);
 
 }  // namespace tessera::mta

@@ -2,12 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/geometric.hpp>
 
 namespace tessera::mta {
 
 namespace {
 
-double coord(const Float3& p, int axis) { return axis == 0 ? p.x : axis == 1 ? p.y : p.z; }
+double coord(const glm::vec3& p, int axis) { return p[axis]; }
 
 double midpoint(const Geometry& g, uint32_t t, int axis) {
   return (coord(g.positions[t * 3], axis) + coord(g.positions[t * 3 + 1], axis) + coord(g.positions[t * 3 + 2], axis)) / 3.0;
@@ -39,11 +40,9 @@ std::pair<std::vector<uint32_t>, std::vector<uint32_t>> halve(const Geometry& g,
 }  // namespace
 
 double triangleArea(const Geometry& g, uint32_t t) {
-  const Float3 &a = g.positions[t * 3], &b = g.positions[t * 3 + 1], &c = g.positions[t * 3 + 2];
-  const double e1[3] = {double(b.x) - a.x, double(b.y) - a.y, double(b.z) - a.z};
-  const double e2[3] = {double(c.x) - a.x, double(c.y) - a.y, double(c.z) - a.z};
-  const double x = e1[1] * e2[2] - e1[2] * e2[1], y = e1[2] * e2[0] - e1[0] * e2[2], z = e1[0] * e2[1] - e1[1] * e2[0];
-  return 0.5 * std::sqrt(x * x + y * y + z * z);
+  const glm::dvec3 a(g.positions[t * 3]);
+  const glm::dvec3 e1 = glm::dvec3(g.positions[t * 3 + 1]) - a, e2 = glm::dvec3(g.positions[t * 3 + 2]) - a;
+  return 0.5 * glm::length(glm::cross(e1, e2));  // in double; sqrt((x·x + y·y) + z·z), correctly rounded
 }
 
 std::array<int, 2> splitAxes(const Geometry& g, std::span<const uint32_t> tris) {

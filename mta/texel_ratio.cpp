@@ -102,9 +102,7 @@ TexelFrame analyzeTexels(const TreeRenderer& renderer, const Camera& camera, con
   for (size_t d = 0; d < frame.plan.draws.size(); ++d)
     for (uint32_t k = 0; k < frame.plan.draws[d].count; ++k) drawOf[frame.plan.draws[d].first + k] = int32_t(d);
 
-  const auto mvpF = viewProjection(camera, W, H);
-  double mvp[16];
-  for (int i = 0; i < 16; ++i) mvp[i] = mvpF[i];
+  const glm::dmat4 mvp(viewProjection(camera, W, H));  // the float matrix the frame was drawn with
   const double tauLimit = tau * (1.0 + 1e-6);
 
   for (uint32_t y = 0; y < H; ++y)
@@ -126,8 +124,9 @@ TexelFrame analyzeTexels(const TreeRenderer& renderer, const Camera& camera, con
       const ImageRecord& img = meta.images[meta.textures[uint32_t(texture)].image];
       for (int v = 0; v < 3; ++v) {
         const RuntimeVertex& rv = g.vertices[size_t(tri) * 3 + v];
+        // Spelled out: GLM's mvp * vec4 would add (c0·x + c1·y) + (c2·z + c3).
         for (int r = 0; r < 4; ++r)
-          clip[v][r] = ((mvp[r] * rv.pos[0] + mvp[4 + r] * rv.pos[1]) + mvp[8 + r] * rv.pos[2]) + mvp[12 + r];
+          clip[v][r] = ((mvp[0][r] * rv.pos.x + mvp[1][r] * rv.pos.y) + mvp[2][r] * rv.pos.z) + mvp[3][r];
         so[v] = double(rv.origUV[0]) * img.width;
         to[v] = double(rv.origUV[1]) * img.height;
         sa[v] = double(rv.atlasUV[0]) * bt.scale * bt.width;

@@ -61,7 +61,7 @@ BlockIndex buildBlockIndex(const MtaMeta& meta);
 // Per-frame derived view quantities shared by both traversals.
 struct ViewContext {
   Frustum frustum;
-  std::array<double, 3> eye{};
+  glm::dvec3 eye{0, 0, 0};
   double distanceFactor = 1.0;    // cos²θ_max or 1
   double minDistanceScale = 1.0;  // build -> frame rescaling of minDistance
 };

@@ -46,7 +46,7 @@ struct Tree {
   uint8_t alpha = 0;  // 0: RGB atlases (3 bytes per texel), 1: RGBA (4)
   std::vector<Node> nodes;
   Geometry geometry;            // every triangle once, in range order
-  std::vector<Float2> atlasUV;  // 3 per triangle: root-atlas texture coordinates
+  std::vector<glm::vec2> atlasUV;     // 3 per triangle: root-atlas texture coordinates
   std::vector<uint32_t> leafImages;   // per leaf (Node::imageFirst/Count): sorted images of every layer
   std::vector<uint32_t> atlasBlocks;  // node * layerCount + layer -> paging-file block (file side)
   uint32_t channels() const { return alpha ? 4 : 3; }

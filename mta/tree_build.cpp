@@ -46,7 +46,7 @@ bool layoutAtlas(const Scene& s, const Geometry& g, std::span<const uint32_t> tr
       const SceneTexture& st = s.textures[tex];
       const auto sh = repeatShift(&L.uv[t * 3], st.wrapS, st.wrapT);
       for (int k = 0; k < 3; ++k)
-        rect.add(Float2{float(double(L.uv[t * 3 + k].u) - sh.first), float(double(L.uv[t * 3 + k].v) - sh.second)});
+        rect.add(glm::vec2{float(double(L.uv[t * 3 + k].x) - sh.first), float(double(L.uv[t * 3 + k].y) - sh.second)});
       if (ts.ignored || ts.constant) continue;
       need.constant = false;
       need.w = std::max(need.w, ts.w);
@@ -145,7 +145,7 @@ struct Flattener {
     n.triangleCount = uint32_t(tree.geometry.triangleCount()) - n.firstTriangle;
     std::array<float, 6> bb{1e30f, 1e30f, 1e30f, -1e30f, -1e30f, -1e30f};
     for (size_t i = size_t(n.firstTriangle) * 3; i < size_t(n.firstTriangle + n.triangleCount) * 3; ++i) {
-      const Float3& v = tree.geometry.positions[i];
+      const glm::vec3& v = tree.geometry.positions[i];
       bb[0] = std::min(bb[0], v.x), bb[1] = std::min(bb[1], v.y), bb[2] = std::min(bb[2], v.z);
       bb[3] = std::max(bb[3], v.x), bb[4] = std::max(bb[4], v.y), bb[5] = std::max(bb[5], v.z);
     }
@@ -177,13 +177,13 @@ struct Flattener {
       for (int k = 0; k < 3; ++k) {
         double s = 0.5, tt = 0.5;  // untextured: the cell centre (never sampled; texture is -1)
         if (e) {
-          const Float2& uv = in.layers[0].uv[t * 3 + k];
-          const double u = float(double(uv.u) - shift.first), v = float(double(uv.v) - shift.second);
+          const glm::vec2& uv = in.layers[0].uv[t * 3 + k];
+          const double u = float(double(uv.x) - shift.first), v = float(double(uv.y) - shift.second);
           const double sw = e->source.width(), sh = e->source.height();
           s = (e->x + (sw > 0.0 ? (u - e->source.u0) / sw * e->w : 0.5 * e->w)) / A;
           tt = (e->y + (sh > 0.0 ? (v - e->source.v0) / sh * e->h : 0.5 * e->h)) / A;
         }
-        tree.atlasUV.push_back(Float2{float(toRoot(s, n.cellX, n.level)), float(toRoot(tt, n.cellY, n.level))});
+        tree.atlasUV.push_back(glm::vec2{float(toRoot(s, n.cellX, n.level)), float(toRoot(tt, n.cellY, n.level))});
       }
     }
   }

@@ -59,7 +59,7 @@ TEST(CityGenerator, SmallBerlinRoundTripsWithOneFacadeTexturePerBuildingAndUntex
     ASSERT_EQ(mesh.texcoords.size(), mesh.positions.size());
     EXPECT_EQ(mesh.triangleCount(), 8u) << mesh.name << ": the four walls";
     float maxU = 0;
-    for (const Float2& t : mesh.texcoords) maxU = std::max(maxU, t.u);
+    for (const glm::vec2& t : mesh.texcoords) maxU = std::max(maxU, t.x);
     EXPECT_GT(maxU, 1.0f) << mesh.name << ": the facade texture repeats around the building";
   }
   EXPECT_EQ(textured, 6u);
@@ -101,8 +101,8 @@ TEST(CityGenerator, SmallChemnitzRoundTripsWithRgbaPartsOddSizesAndOverAHundredR
     for (size_t t = 0; t < mesh.indices.size(); t += 3) {
       float lo = 1e30f, hi = -1e30f;
       for (int k = 0; k < 3; ++k)
-        lo = std::min(lo, mesh.texcoords[mesh.indices[t + k]].u),
-        hi = std::max(hi, mesh.texcoords[mesh.indices[t + k]].u);
+        lo = std::min(lo, mesh.texcoords[mesh.indices[t + k]].x),
+        hi = std::max(hi, mesh.texcoords[mesh.indices[t + k]].x);
       maxSpan = std::max(maxSpan, hi - lo);
     }
   }

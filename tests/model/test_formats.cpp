@@ -16,7 +16,7 @@ namespace {
 using testing::ScratchDir;
 
 bool hasTexcoord(const Mesh& m, float u, float v) {
-  return std::any_of(m.texcoords.begin(), m.texcoords.end(), [&](const Float2& t) { return t.u == u && t.v == v; });
+  return std::any_of(m.texcoords.begin(), m.texcoords.end(), [&](const glm::vec2& t) { return t.x == u && t.y == v; });
 }
 
 // A glTF 2.0 file exercising what real exports use, written beside checker.png.
@@ -100,7 +100,7 @@ TEST(GltfLoader, StripsFansNormalizedTexcoordsTextureTransformAndNodeTransformsA
   EXPECT_EQ(strip.positions[3].x, 12.0f);
   EXPECT_EQ(strip.positions[3].y, 2.0f);
   // Normalized ushort texcoords: 32768 / 65535.
-  EXPECT_EQ(strip.texcoords[2].v, 32768.0f / 65535.0f);
+  EXPECT_EQ(strip.texcoords[2].y, 32768.0f / 65535.0f);
   // KHR_texture_transform on TEXCOORD_0 (the extension's texCoord overrides the textureInfo's 1):
   // u' = 2u + 0.5, v' = 2v.
   EXPECT_TRUE(hasTexcoord(fan, 6000.5f, 4.0f));
@@ -226,7 +226,7 @@ TEST(AssimpLoader, Ac3dFileLoadsWithItsTextureAndRepeatedTexcoords) {
   ASSERT_FALSE(m.meshes.empty());
   float maxU = 0;
   for (const Mesh& mesh : m.meshes)
-    for (const Float2& t : mesh.texcoords) maxU = std::max(maxU, t.u);
+    for (const glm::vec2& t : mesh.texcoords) maxU = std::max(maxU, t.x);
   EXPECT_EQ(maxU, 3000.0f);
   EXPECT_EQ(probeTexture(m, 0).height, 2u);
 }

@@ -70,10 +70,10 @@ TEST(Railway, TexcoordsOutsideTheUnitSquareSurviveExactlyAsTheAccessorsSay) {
   for (size_t p = 0; p < prims.size(); ++p) {
     const auto& acc = j["accessors"][prims[p]["attributes"]["TEXCOORD_0"].get<size_t>()];
     float lo[2] = {1e30f, 1e30f}, hi[2] = {-1e30f, -1e30f};
-    for (const Float2& t : m.meshes[p].texcoords) {
-      lo[0] = std::min(lo[0], t.u), lo[1] = std::min(lo[1], t.v), hi[0] = std::max(hi[0], t.u),
-      hi[1] = std::max(hi[1], t.v);
-      maxAbs = std::max({maxAbs, std::fabs(t.u), std::fabs(t.v)});
+    for (const glm::vec2& t : m.meshes[p].texcoords) {
+      lo[0] = std::min(lo[0], t.x), lo[1] = std::min(lo[1], t.y), hi[0] = std::max(hi[0], t.x),
+      hi[1] = std::max(hi[1], t.y);
+      maxAbs = std::max({maxAbs, std::fabs(t.x), std::fabs(t.y)});
     }
     for (int k = 0; k < 2; ++k) {
       EXPECT_EQ(lo[k], acc["min"][k].get<float>()) << "primitive " << p << " component " << k;
@@ -90,7 +90,7 @@ TEST(Railway, TheNodeMatrixIsAppliedToPositions) {
   // y in [3.942, 7.434] and z in [8.359, 8.638].
   const Mesh& mesh = railway().meshes.at(0);
   Bounds b;
-  for (const Float3& p : mesh.positions) b.add(p);
+  for (const glm::vec3& p : mesh.positions) b.add(p);
   EXPECT_FLOAT_EQ(b.min.y, 8.359000205993652f);
   EXPECT_FLOAT_EQ(b.max.y, 8.63800048828125f);
   EXPECT_FLOAT_EQ(b.min.z, -7.434000015258789f);

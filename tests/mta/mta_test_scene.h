@@ -27,8 +27,8 @@ inline Scene gridScene(int nx, int ny, uint32_t size = 32, float repeats = 2.0f,
   const int layer1Base = int(s.textures.size());
   for (int q = 0; q < quads; ++q) {
     const float x = float(q % nx), y = float(q / nx), off = float(q);
-    const Float3 p[4] = {{x, y, 0}, {x + 1, y, 0}, {x + 1, y + 1, 0}, {x, y + 1, 0}};
-    const Float2 t[4] = {{off, 0}, {off + repeats, 0}, {off + repeats, repeats}, {off, repeats}};
+    const glm::vec3 p[4] = {{x, y, 0}, {x + 1, y, 0}, {x + 1, y + 1, 0}, {x, y + 1, 0}};
+    const glm::vec2 t[4] = {{off, 0}, {off + repeats, 0}, {off + repeats, repeats}, {off, repeats}};
     const int tri[2][3] = {{0, 1, 2}, {0, 2, 3}};
     for (int k = 0; k < 2; ++k) {
       for (int i = 0; i < 3; ++i) {
@@ -43,7 +43,7 @@ inline Scene gridScene(int nx, int ny, uint32_t size = 32, float repeats = 2.0f,
         s.images.push_back(SceneImage{16, 16, "layer1_" + std::to_string(img)});
         s.textures.push_back(SceneTexture{img, model::Wrap::ClampToEdge, model::Wrap::ClampToEdge});
         g.layers[1].texture.push_back(layer1Base + 2 * q + k);
-        const Float2 l1[3] = {{0, 0}, {1, 0}, {0, 1}};
+        const glm::vec2 l1[3] = {{0, 0}, {1, 0}, {0, 1}};
         for (int i = 0; i < 3; ++i) g.layers[1].uv.push_back(l1[i]);
       }
     }

@@ -26,9 +26,9 @@ Camera lookingDownMinusZ() {
   return c;
 }
 
-std::array<double, 4> clipOf(const std::array<double, 16>& m, const std::array<double, 3>& p) {
-  std::array<double, 4> r;
-  for (int i = 0; i < 4; ++i) r[i] = m[i] * p[0] + m[4 + i] * p[1] + m[8 + i] * p[2] + m[12 + i];
+glm::dvec4 clipOf(const glm::dmat4& m, const glm::dvec3& p) {
+  glm::dvec4 r;
+  for (int i = 0; i < 4; ++i) r[i] = m[0][i] * p[0] + m[1][i] * p[1] + m[2][i] * p[2] + m[3][i];
   return r;
 }
 
@@ -110,9 +110,7 @@ TEST(Camera, ThePointAtTheViewCentreProjectsToTheNdcOrigin) {
   EXPECT_NEAR(clip[0] / clip[3], 0.0, 1e-12);
   EXPECT_NEAR(clip[1] / clip[3], 0.0, 1e-12);
   EXPECT_GT(clip[3], 0.0);
-  const auto mf = viewProjection(c, 1024, 768);
-  std::array<double, 16> md;
-  for (int i = 0; i < 16; ++i) md[i] = mf[i];
+  const glm::dmat4 md(viewProjection(c, 1024, 768));
   const auto cf = clipOf(md, c.target);
   EXPECT_NEAR(cf[0] / cf[3], 0.0, 1e-5);
   EXPECT_NEAR(cf[1] / cf[3], 0.0, 1e-5);
@@ -136,14 +134,14 @@ TEST(Camera, TheFloatMatricesAreTheDoubleMatricesRoundedOnce) {
   c.target = {4, -5, 6};
   const auto d = viewProjectionD(c, 800, 600);
   const auto f = viewProjection(c, 800, 600);
-  for (int i = 0; i < 16; ++i) EXPECT_EQ(f[i], float(d[i])) << i;
+  for (int i = 0; i < 16; ++i) EXPECT_EQ(f[i / 4][i % 4], float(d[i / 4][i % 4])) << i;
   const auto v = viewMatrix(c);
   const auto vd = viewMatrixD(c);
   const auto p = projectionMatrix(c, 800, 600);
   const auto pd = projectionMatrixD(c, 800, 600);
   for (int i = 0; i < 16; ++i) {
-    EXPECT_EQ(v[i], float(vd[i])) << i;
-    EXPECT_EQ(p[i], float(pd[i])) << i;
+    EXPECT_EQ(v[i / 4][i % 4], float(vd[i / 4][i % 4])) << i;
+    EXPECT_EQ(p[i / 4][i % 4], float(pd[i / 4][i % 4])) << i;
   }
 }
 
@@ -303,11 +301,11 @@ TEST(CameraPath, PathFileDirectivesApplyToTheFramesThatFollow) {
   EXPECT_NEAR(p.frames[0].tanHalfFovX, 1.0, 1e-15);
   EXPECT_EQ(p.frames[0].nearPlane, 0.25);
   EXPECT_EQ(p.frames[0].farPlane, 2000.0);
-  EXPECT_EQ(p.frames[0].up, (std::array<double, 3>{0, 1, 0}));
-  EXPECT_EQ(p.frames[0].target, (std::array<double, 3>{10, 1.5, 0}));
-  EXPECT_EQ(p.frames[1].up, (std::array<double, 3>{0, 0, 1}));
+  EXPECT_EQ(p.frames[0].up, (glm::dvec3{0, 1, 0}));
+  EXPECT_EQ(p.frames[0].target, (glm::dvec3{10, 1.5, 0}));
+  EXPECT_EQ(p.frames[1].up, (glm::dvec3{0, 0, 1}));
   EXPECT_EQ(p.frames[1].nearPlane, 0.25);
-  EXPECT_EQ(p.frames[1].eye, (std::array<double, 3>{1, 2, 3}));
+  EXPECT_EQ(p.frames[1].eye, (glm::dvec3{1, 2, 3}));
 }
 
 TEST(CameraPath, MalformedPathFilesThrowNamingTheFileAndTheLine) {

@@ -11,8 +11,8 @@ namespace tessera::mta {
 namespace {
 
 TEST(SizeEstimation, UnitSquareMappedToOneMetreGivesFProjTexels) {
-  const Float3 v[3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
-  const Float2 t[3] = {{0, 0}, {1, 0}, {0, 1}};
+  const glm::vec3 v[3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  const glm::vec2 t[3] = {{0, 0}, {1, 0}, {0, 1}};
   const TexelSize s = triangleTexelSize(v, t, 100.0);
   EXPECT_DOUBLE_EQ(s.w, 100.0);
   EXPECT_DOUBLE_EQ(s.h, 100.0);
@@ -21,23 +21,23 @@ TEST(SizeEstimation, UnitSquareMappedToOneMetreGivesFProjTexels) {
 
 TEST(SizeEstimation, AnisotropicAndShearedMappingsUseTheWorldImageOfEachTextureAxis) {
   // u spans 4 m along x, v spans 2 m along z: s_world = (4,0,0), t_world = (0,0,2).
-  const Float3 v[3] = {{0, 0, 0}, {4, 0, 0}, {0, 0, 2}};
-  const Float2 t[3] = {{0, 0}, {1, 0}, {0, 1}};
+  const glm::vec3 v[3] = {{0, 0, 0}, {4, 0, 0}, {0, 0, 2}};
+  const glm::vec2 t[3] = {{0, 0}, {1, 0}, {0, 1}};
   const TexelSize s = triangleTexelSize(v, t, 10.0);
   EXPECT_DOUBLE_EQ(s.w, 40.0);
   EXPECT_DOUBLE_EQ(s.h, 20.0);
   // Texcoords (0,0), (1,1), (0,1) on a right triangle: Tex^-1((1,0)) = (1, -1) -> s_world = v1 - v2.
-  const Float3 w[3] = {{0, 0, 0}, {1, 1, 0}, {0, 1, 0}};
-  const Float2 u[3] = {{0, 0}, {1, 1}, {0, 1}};
+  const glm::vec3 w[3] = {{0, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  const glm::vec2 u[3] = {{0, 0}, {1, 1}, {0, 1}};
   const TexelSize r = triangleTexelSize(w, u, 1.0);
   EXPECT_DOUBLE_EQ(r.w, 1.0);
   EXPECT_DOUBLE_EQ(r.h, 1.0);
 }
 
 TEST(SizeEstimation, RepetitionDoesNotChangeTheRequiredAreaOnlyThePerRepeatSize) {
-  const Float3 v[3] = {{0, 0, 0}, {10, 0, 0}, {0, 10, 0}};
-  const Float2 t1[3] = {{0, 0}, {1, 0}, {0, 1}};
-  const Float2 t1000[3] = {{0, 0}, {1000, 0}, {0, 1000}};
+  const glm::vec3 v[3] = {{0, 0, 0}, {10, 0, 0}, {0, 10, 0}};
+  const glm::vec2 t1[3] = {{0, 0}, {1, 0}, {0, 1}};
+  const glm::vec2 t1000[3] = {{0, 0}, {1000, 0}, {0, 1000}};
   const TexelSize a = triangleTexelSize(v, t1, 5.0), b = triangleTexelSize(v, t1000, 5.0);
   EXPECT_NEAR(a.w, b.w * 1000.0, 1e-9);
   TexRect ra, rb;
@@ -48,20 +48,20 @@ TEST(SizeEstimation, RepetitionDoesNotChangeTheRequiredAreaOnlyThePerRepeatSize)
 }
 
 TEST(SizeEstimation, DegenerateCasesFollowTheThesis) {
-  const Float3 v[3] = {{0, 0, 0}, {3, 0, 0}, {0, 4, 0}};
-  const Float2 same[3] = {{0.5f, 0.5f}, {0.5f, 0.5f}, {0.5f, 0.5f}};
+  const glm::vec3 v[3] = {{0, 0, 0}, {3, 0, 0}, {0, 4, 0}};
+  const glm::vec2 same[3] = {{0.5f, 0.5f}, {0.5f, 0.5f}, {0.5f, 0.5f}};
   const TexelSize c = triangleTexelSize(v, same, 7.0);
   EXPECT_TRUE(c.constant);
   EXPECT_EQ(c.w, 1.0);
   // Collinear texcoords: longest texture edge (0,0)-(0.5,0) belongs to v0-v2 (|v| = 4): 4 / 0.5 = 8 per unit.
-  const Float2 line[3] = {{0, 0}, {0.25f, 0}, {0.5f, 0}};
+  const glm::vec2 line[3] = {{0, 0}, {0.25f, 0}, {0.5f, 0}};
   const TexelSize l = triangleTexelSize(v, line, 2.0);
   EXPECT_FALSE(l.constant);
   EXPECT_DOUBLE_EQ(l.w, 16.0);
   EXPECT_DOUBLE_EQ(l.h, 16.0);
   // World-degenerate triangles are ignored.
-  const Float3 flat[3] = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
-  const Float2 t[3] = {{0, 0}, {1, 0}, {0, 1}};
+  const glm::vec3 flat[3] = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
+  const glm::vec2 t[3] = {{0, 0}, {1, 0}, {0, 1}};
   EXPECT_TRUE(triangleTexelSize(flat, t, 1.0).ignored);
 }
 

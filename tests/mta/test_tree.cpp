@@ -51,7 +51,7 @@ TEST(Split, SmallSetsNeverProduceEmptyChildrenAndZeroAreaFallsBackToCounts) {
     EXPECT_EQ(total, n);
   }
   Geometry flat = s.geometry;
-  for (Float3& p : flat.positions) p.y = 0.0f;  // every triangle degenerate: area 0
+  for (glm::vec3& p : flat.positions) p.y = 0.0f;  // every triangle degenerate: area 0
   const auto groups = splitTriangles(flat, all(flat));
   EXPECT_FALSE(groups[0].empty());
   EXPECT_FALSE(groups[1].empty());
@@ -140,13 +140,13 @@ void checkTree(const Scene& s, const Tree& tree, const BuildParams& p) {
     for (uint32_t t = n.firstTriangle; t < n.firstTriangle + n.triangleCount; ++t) {
       if (tree.geometry.layers[0].texture[t] < 0) continue;
       for (int k = 0; k < 3; ++k) {
-        const Float2 r = tree.atlasUV[t * 3 + k];
-        const double sx = double(r.u) * n.textureScale() - n.cellX, sy = double(r.v) * n.textureScale() - n.cellY;
+        const glm::vec2 r = tree.atlasUV[t * 3 + k];
+        const double sx = double(r.x) * n.textureScale() - n.cellX, sy = double(r.y) * n.textureScale() - n.cellY;
         ASSERT_GE(sx, -1e-6) << "node " << i;
         ASSERT_LE(sx, 1.0 + 1e-6) << "node " << i;
         ASSERT_GE(sy, -1e-6);
         ASSERT_LE(sy, 1.0 + 1e-6);
-        if (sx > 1e-6 && sx < 1.0 - 1e-6) EXPECT_NEAR(toLocal(r.u, n.level), sx, 1e-6);
+        if (sx > 1e-6 && sx < 1.0 - 1e-6) EXPECT_NEAR(toLocal(r.x, n.level), sx, 1e-6);
         if (n.leaf()) {  // inside the texture's area of the leaf atlas
           const AtlasEntry* e = nullptr;
           for (const AtlasEntry& x : n.entries)
@@ -177,7 +177,7 @@ TEST(Tree, EveryNodeIsAContiguousRangeAndTextureMatricesRoundTripInADeepTree) {
   // Deterministic: the same input gives the same tree.
   const Tree again = buildTree(s, g, tris, 0, p, rep.dMinUsed);
   ASSERT_EQ(again.nodes.size(), tree.nodes.size());
-  for (size_t i = 0; i < tree.atlasUV.size(); ++i) ASSERT_EQ(again.atlasUV[i].u, tree.atlasUV[i].u);
+  for (size_t i = 0; i < tree.atlasUV.size(); ++i) ASSERT_EQ(again.atlasUV[i].x, tree.atlasUV[i].x);
 }
 
 TEST(Tree, ASceneThatFitsOneAtlasIsASingleLeafAndRepeatOffsetsDoNotGrowTheArea) {

@@ -132,7 +132,7 @@ TEST(Visibility, AFartherTriangleShownInFrontIsUnexplained) {
   mesh.quad({-0.9f, -0.9f, 0.5f}, {0.5f, -0.9f, 0.5f}, {0.5f, 0.5f, 0.5f}, {-0.9f, 0.5f, 0.5f}, {}, {}, {}, {}, 1);
   mesh.quad({-0.5f, -0.5f, 0.0f}, {0.9f, -0.5f, 0.0f}, {0.9f, 0.9f, 0.0f}, {-0.5f, 0.9f, 0.0f}, {}, {}, {}, {}, 2);
   scenes::bindMesh(f.cl, mesh);
-  scenes::setMatrix(f.cl, 0, scenes::Mat4::identity());
+  scenes::setMatrix(f.cl, 0, glm::mat4(1.0f));
   f.depth(CompareFunc::Less);
   f.cl.drawIndexed(0, 12);
   IdImages oracle = renderOracleIds(f.cl);
@@ -151,15 +151,15 @@ TEST(Visibility, CoplanarQuadsWithOtherDiagonalsAreDepthTies) {
   for (CompareFunc func : {CompareFunc::Less, CompareFunc::LEqual}) {
     IdFrame f(80, 60);
     scenes::Mesh mesh;
-    const scenes::Vec3 p[4] = {{-0.9f, -0.8f, 0.3f}, {0.8f, -0.9f, -0.2f}, {0.9f, 0.85f, 0.4f}, {-0.85f, 0.9f, 0.9f}};
+    const glm::vec3 p[4] = {{-0.9f, -0.8f, 0.3f}, {0.8f, -0.9f, -0.2f}, {0.9f, 0.85f, 0.4f}, {-0.85f, 0.9f, 0.9f}};
     // Make the fourth corner coplanar with the first three: p3 = p0 + p2 - p1.
-    const scenes::Vec3 q3{p[0].x + p[2].x - p[1].x, p[0].y + p[2].y - p[1].y, p[0].z + p[2].z - p[1].z};
+    const glm::vec3 q3 = p[0] + p[2] - p[1];
     mesh.quad(p[0], p[1], p[2], q3, {}, {}, {}, {}, 1);
     mesh.quad(p[1], p[2], q3, p[0], {}, {}, {}, {}, 2);
     scenes::bindMesh(f.cl, mesh);
-    scenes::setMatrix(
-        f.cl, 0,
-        scenes::perspective(60.0, 80.0 / 60.0, 0.5, 10.0) * scenes::lookAt({0.2f, -0.3f, 2.5f}, {0, 0, 0}, {0, 1, 0}));
+    scenes::setMatrix(f.cl, 0,
+                      scenes::mul(scenes::perspective(60.0, 80.0 / 60.0, 0.5, 10.0),
+                                  scenes::lookAt({0.2f, -0.3f, 2.5f}, {0, 0, 0}, {0, 1, 0})));
     f.depth(func);
     f.cl.drawIndexed(0, 12);
     const VisibilityResult r = castVisibility(f.cl);
@@ -196,7 +196,7 @@ TEST(Visibility, RandomTriangleSoupsUnderEverySupportedStateAreExplained) {
     layout.attribs[0] = {0, 4, AttribType::F32, uint32_t(offsetof(scenes::Vertex, attr))};
     layout.attribs[1] = {2, 1, AttribType::U32, uint32_t(offsetof(scenes::Vertex, id))};
     f.cl.setVertexLayout(layout);
-    scenes::setMatrix(f.cl, 0, scenes::Mat4::identity());
+    scenes::setMatrix(f.cl, 0, glm::mat4(1.0f));
     for (uint32_t first = 0; first < tris * 3;) {
       f.depth(rng.below(2) ? CompareFunc::Less : CompareFunc::LEqual);
       f.cl.setRasterState({CullMode(rng.below(3)), rng.below(2) == 0, 0});
@@ -224,8 +224,8 @@ TEST(Visibility, NearPlaneCrossingTrianglesAreClippedLikeTheOracle) {
   mesh.quad({-3, -4, 0}, {2, 6, 0}, {2, 6, 3}, {-3, -4, 3}, {}, {}, {}, {}, 2);
   mesh.quad({1, 8, 0}, {4, 8, 0}, {4, 8, 2}, {1, 8, 2}, {}, {}, {}, {}, 3);
   const uint32_t n = scenes::bindMesh(f.cl, mesh);
-  const scenes::Mat4 vp =
-      scenes::perspective(70.0, 200.0 / 150.0, 0.5, 60.0) * scenes::lookAt({0, -2, 1.2f}, {0.5f, 10, 0.5f}, {0, 0, 1});
+  const glm::mat4 vp = scenes::mul(scenes::perspective(70.0, 200.0 / 150.0, 0.5, 60.0),
+                                   scenes::lookAt({0, -2, 1.2f}, {0.5f, 10, 0.5f}, {0, 0, 1}));
   scenes::setMatrix(f.cl, 0, vp);
   f.depth(CompareFunc::Less);
   f.cl.drawIndexed(0, n);
@@ -248,7 +248,7 @@ TEST(Visibility, ExactDepthTiesResolveLikeTheDepthFunction) {
       mesh.quad({-0.8f, -0.7f, 0.1f}, {0.9f, -0.6f, 0.3f}, {0.7f, 0.8f, -0.2f}, {-0.6f, 0.5f, 0.0f}, {}, {}, {}, {},
                 id);
     scenes::bindMesh(f.cl, mesh);
-    scenes::setMatrix(f.cl, 0, scenes::Mat4::identity());
+    scenes::setMatrix(f.cl, 0, glm::mat4(1.0f));
     f.depth(func);
     f.cl.drawIndexed(0, 6);
     f.cl.drawIndexed(6, 6);
@@ -264,7 +264,7 @@ TEST(Visibility, UnsupportedStateIsAClearError) {
   scenes::Mesh mesh;
   mesh.quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, {}, {}, {}, {}, 1);
   scenes::bindMesh(f.cl, mesh);
-  scenes::setMatrix(f.cl, 0, scenes::Mat4::identity());
+  scenes::setMatrix(f.cl, 0, glm::mat4(1.0f));
   f.depth(CompareFunc::Greater);
   f.cl.drawIndexed(0, 6);
   try {

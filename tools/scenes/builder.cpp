@@ -1,74 +1,73 @@
 #include "tools/scenes/builder.h"
 
-#include <cmath>
-#include <cstring>
+#include <glm/geometric.hpp>
+#include <glm/gtc/type_ptr.hpp>
 
 #include "raster/texture.h"
 
 namespace tessera::scenes {
 
-Mat4 Mat4::identity() {
-  Mat4 r;
-  r.m[0] = r.m[5] = r.m[10] = r.m[15] = 1.0f;
-  return r;
-}
+namespace {
 
-Mat4 operator*(const Mat4& a, const Mat4& b) {
-  Mat4 r;
+// v / |v|: GLM's normalize multiplies by an inverse square root and gives other bits. sqrt is
+// correctly rounded (IEEE 754), so this is as deterministic as + - * /.
+glm::dvec3 normalized(const glm::dvec3& v) { return v / glm::length(v); }
+
+}  // namespace
+
+glm::mat4 mul(const glm::mat4& a, const glm::mat4& b) {
+  // dmat4 * dmat4 sums each entry as ((p0 + p1) + p2) + p3; the scenes' sum started from +0.0, which
+  // differs only in the sign of a zero result: adding +0.0 turns -0 into +0 and changes nothing else.
+  const glm::dmat4 p = glm::dmat4(a) * glm::dmat4(b);
+  glm::mat4 r;
   for (int c = 0; c < 4; ++c)
-    for (int row = 0; row < 4; ++row) {
-      double s = 0.0;
-      for (int k = 0; k < 4; ++k) s = s + double(a.m[k * 4 + row]) * double(b.m[c * 4 + k]);
-      r.m[c * 4 + row] = float(s);
-    }
+    for (int row = 0; row < 4; ++row) r[c][row] = float(p[c][row] + 0.0);
   return r;
 }
 
-Mat4 perspective(double fovyDegrees, double aspect, double zNear, double zFar) {
+glm::mat4 perspective(double fovyDegrees, double aspect, double zNear, double zFar) {
   const double half = fovyDegrees * kPi / 360.0;
   const double f = detCos(half) / detSin(half);
-  Mat4 r;
-  r.m[0] = float(f / aspect);
-  r.m[5] = float(f);
-  r.m[10] = float((zFar + zNear) / (zNear - zFar));
-  r.m[11] = -1.0f;
-  r.m[14] = float(2.0 * zFar * zNear / (zNear - zFar));
+  glm::mat4 r(0.0f);
+  r[0][0] = float(f / aspect);
+  r[1][1] = float(f);
+  r[2][2] = float((zFar + zNear) / (zNear - zFar));
+  r[2][3] = -1.0f;
+  r[3][2] = float(2.0 * zFar * zNear / (zNear - zFar));
   return r;
 }
 
-Mat4 ortho(double l, double r, double b, double t, double n, double f) {
-  Mat4 m = Mat4::identity();
-  m.m[0] = float(2.0 / (r - l));
-  m.m[5] = float(2.0 / (t - b));
-  m.m[10] = float(-2.0 / (f - n));
-  m.m[12] = float(-(r + l) / (r - l));
-  m.m[13] = float(-(t + b) / (t - b));
-  m.m[14] = float(-(f + n) / (f - n));
+glm::mat4 ortho(double l, double r, double b, double t, double n, double f) {
+  glm::mat4 m(1.0f);
+  m[0][0] = float(2.0 / (r - l));
+  m[1][1] = float(2.0 / (t - b));
+  m[2][2] = float(-2.0 / (f - n));
+  m[3][0] = float(-(r + l) / (r - l));
+  m[3][1] = float(-(t + b) / (t - b));
+  m[3][2] = float(-(f + n) / (f - n));
   return m;
 }
 
-Mat4 lookAt(Vec3 eye, Vec3 center, Vec3 up) {
-  auto norm = [](double v[3]) {
-    const double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);  // sqrt is correctly rounded
-    for (int i = 0; i < 3; ++i) v[i] /= l;
-  };
-  double f[3] = {double(center.x) - eye.x, double(center.y) - eye.y, double(center.z) - eye.z};
-  norm(f);
-  double u[3] = {up.x, up.y, up.z};
-  double s[3] = {f[1] * u[2] - f[2] * u[1], f[2] * u[0] - f[0] * u[2], f[0] * u[1] - f[1] * u[0]};
-  norm(s);
-  const double v[3] = {s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2], s[0] * f[1] - s[1] * f[0]};
-  Mat4 m = Mat4::identity();
+glm::mat4 lookAt(glm::vec3 eye, glm::vec3 center, glm::vec3 up) {
+  // In double: glm::cross and glm::dot evaluate in the order this function always used.
+  const glm::dvec3 e(eye);
+  const glm::dvec3 f = normalized(glm::dvec3(center) - e);
+  const glm::dvec3 s = normalized(glm::cross(f, glm::dvec3(up)));
+  const glm::dvec3 v = glm::cross(s, f);
+  glm::mat4 m(1.0f);
   for (int i = 0; i < 3; ++i) {
-    m.m[i * 4 + 0] = float(s[i]);
-    m.m[i * 4 + 1] = float(v[i]);
-    m.m[i * 4 + 2] = float(-f[i]);
+    m[i][0] = float(s[i]);
+    m[i][1] = float(v[i]);
+    m[i][2] = float(-f[i]);
   }
-  m.m[12] = float(-(s[0] * eye.x + s[1] * eye.y + s[2] * eye.z));
-  m.m[13] = float(-(v[0] * eye.x + v[1] * eye.y + v[2] * eye.z));
-  m.m[14] = float(f[0] * eye.x + f[1] * eye.y + f[2] * eye.z);
+  m[3][0] = float(-glm::dot(s, e));
+  m[3][1] = float(-glm::dot(v, e));
+  m[3][2] = float(glm::dot(f, e));
   return m;
 }
+
+// The vertex buffers of recorded frames are these bytes: no padding, glm::vec3 / vec4 are plain floats.
+static_assert(sizeof(Vertex) == 32 && offsetof(Vertex, attr) == 12 && offsetof(Vertex, id) == 28);
 
 VertexLayout standardLayout() {
   VertexLayout l;
@@ -79,13 +78,12 @@ VertexLayout standardLayout() {
   return l;
 }
 
-void Mesh::quad(Vec3 p0, Vec3 p1, Vec3 p2, Vec3 p3, std::array<float, 4> a0, std::array<float, 4> a1,
-                std::array<float, 4> a2, std::array<float, 4> a3, uint32_t id) {
+void Mesh::quad(glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, glm::vec3 p3, glm::vec4 a0, glm::vec4 a1, glm::vec4 a2,
+                glm::vec4 a3, uint32_t id) {
   const uint32_t base = uint32_t(vertices.size());
-  const Vec3 p[4] = {p0, p1, p2, p3};
-  const std::array<float, 4> a[4] = {a0, a1, a2, a3};
-  for (int i = 0; i < 4; ++i)
-    vertices.push_back({{p[i].x, p[i].y, p[i].z}, {a[i][0], a[i][1], a[i][2], a[i][3]}, id});
+  const glm::vec3 p[4] = {p0, p1, p2, p3};
+  const glm::vec4 a[4] = {a0, a1, a2, a3};
+  for (int i = 0; i < 4; ++i) vertices.push_back({p[i], a[i], id});
   for (uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) indices.push_back(base + i);
 }
 
@@ -108,27 +106,28 @@ uint32_t bindMesh(CommandList& cl, const Mesh& mesh) {
   return uint32_t(mesh.indices.size());
 }
 
-void setMatrix(CommandList& cl, uint32_t slot, const Mat4& m) { cl.setUniforms(slot, m.m); }
+// glm::mat4 stores its four columns contiguously: the same 16 floats, in the same order, as m[c * 4 + r].
+void setMatrix(CommandList& cl, uint32_t slot, const glm::mat4& m) {
+  cl.setUniforms(slot, std::span<const float>(glm::value_ptr(m), 16));
+}
 
-void setVec4(CommandList& cl, uint32_t slot, std::array<float, 4> v) { cl.setUniforms(slot, v); }
+void setVec4(CommandList& cl, uint32_t slot, glm::vec4 v) {
+  cl.setUniforms(slot, std::span<const float>(glm::value_ptr(v), 4));
+}
 
 void setTexturedDefaults(CommandList& cl) {
   const float v[20] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1, 1, 1, 1, 0, 0, 0, 0};
   cl.setUniforms(4, v);
 }
 
-void Image::set(uint32_t x, uint32_t y, std::array<uint8_t, 4> c) {
-  std::memcpy(&rgba[(size_t(y) * width + x) * 4], c.data(), 4);
-}
-
-Image checker(uint32_t w, uint32_t h, uint32_t cell, std::array<uint8_t, 4> a, std::array<uint8_t, 4> b) {
-  Image img{w, h, std::vector<uint8_t>(size_t(w) * h * 4)};
+RgbaImage checker(uint32_t w, uint32_t h, uint32_t cell, std::array<uint8_t, 4> a, std::array<uint8_t, 4> b) {
+  RgbaImage img{w, h, std::vector<uint8_t>(size_t(w) * h * 4)};
   for (uint32_t y = 0; y < h; ++y)
     for (uint32_t x = 0; x < w; ++x) img.set(x, y, ((x / cell + y / cell) & 1) ? b : a);
   return img;
 }
 
-ResourceId uploadTexture(CommandList& cl, const Image& img, bool mipmaps) {
+ResourceId uploadTexture(CommandList& cl, const RgbaImage& img, bool mipmaps) {
   TextureDesc d;
   d.kind = TextureKind::Tex2D;
   d.format = Format::RGBA8;

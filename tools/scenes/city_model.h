@@ -12,9 +12,9 @@ struct CityModel {
   Mesh mesh;                                   // ground first, then buildings
   uint32_t groundIndexCount = 0;
   std::vector<std::pair<uint32_t, uint32_t>> buildings;  // (first index, index count)
-  std::vector<Image> facades;                  // one per building
-  Image road;
-  Mat4 viewProj;
+  std::vector<RgbaImage> facades;                        // one per building
+  RgbaImage road;
+  glm::mat4 viewProj;
 };
 
 CityModel makeCity(int gridSize, int width, int height, uint64_t seed);

@@ -31,7 +31,7 @@ void buildCityBlock(CommandList& cl, int w, int h) {
   cl.bindTexture(0, uploadTexture(cl, city.road, true));
   cl.drawIndexed(0, city.groundIndexCount);
   std::vector<ResourceId> textures;
-  for (const Image& img : city.facades) textures.push_back(uploadTexture(cl, img, true));
+  for (const RgbaImage& img : city.facades) textures.push_back(uploadTexture(cl, img, true));
   for (size_t b = 0; b < city.buildings.size(); ++b) {
     cl.bindTexture(0, textures[b]);
     cl.drawIndexed(city.buildings[b].first, city.buildings[b].second);

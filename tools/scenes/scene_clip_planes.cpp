@@ -44,7 +44,8 @@ void buildClipPlanes(CommandList& cl, int w, int h) {
   const uint32_t nf = bindMesh(cl, floor);
   cl.setViewport({w / 2, 0, w - w / 2, h});
   cl.setRasterState({});
-  setMatrix(cl, 0, perspective(75.0, double(w - w / 2) / h, 0.5, 40.0) * lookAt({0, 0, 0}, {0, -0.3f, -1}, {0, 1, 0}));
+  setMatrix(cl, 0,
+            mul(perspective(75.0, double(w - w / 2) / h, 0.5, 40.0), lookAt({0, 0, 0}, {0, -0.3f, -1}, {0, 1, 0})));
   cl.drawIndexed(0, nf);
 }
 

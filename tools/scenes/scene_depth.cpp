@@ -9,7 +9,7 @@ namespace tessera::scenes {
 void buildDepth(CommandList& cl, int w, int h) {
   beginFrame(cl, w, h, true, {0, 0, 0, 1});
   cl.useProgram(cl.createProgram("vertex_color"));
-  setMatrix(cl, 0, perspective(60.0, double(w) / h, 0.5, 10.0) * lookAt({0, 0, 2.5f}, {0, 0, 0}, {0, 1, 0}));
+  setMatrix(cl, 0, mul(perspective(60.0, double(w) / h, 0.5, 10.0), lookAt({0, 0, 2.5f}, {0, 0, 0}, {0, 1, 0})));
   Mesh m;
   m.triangle({{-1.0f, -0.8f, -0.6f}, {1, 0.2f, 0.2f, 1}, 0}, {{1.0f, -0.6f, 0.5f}, {1, 0.6f, 0.2f, 1}, 0},
              {{0.0f, 0.9f, 0.0f}, {1, 0.2f, 0.6f, 1}, 0});

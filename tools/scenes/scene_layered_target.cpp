@@ -9,9 +9,9 @@
 namespace tessera::scenes {
 
 namespace {
-void box(Mesh& m, Vec3 c, float e, uint32_t id) {
+void box(Mesh& m, glm::vec3 c, float e, uint32_t id) {
   const float x0 = c.x - e, x1 = c.x + e, y0 = c.y - e, y1 = c.y + e, z0 = c.z - e, z1 = c.z + e;
-  const std::array<float, 4> t0{0, 0, 0, 0}, t1{1, 0, 0, 0}, t2{1, 1, 0, 0}, t3{0, 1, 0, 0};
+  const glm::vec4 t0{0, 0, 0, 0}, t1{1, 0, 0, 0}, t2{1, 1, 0, 0}, t3{0, 1, 0, 0};
   m.quad({x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}, {x0, y1, z1}, t0, t1, t2, t3, id);  // +z
   m.quad({x1, y0, z0}, {x0, y0, z0}, {x0, y1, z0}, {x1, y1, z0}, t0, t1, t2, t3, id);  // -z
   m.quad({x1, y0, z1}, {x1, y0, z0}, {x1, y1, z0}, {x1, y1, z1}, t0, t1, t2, t3, id);  // +x
@@ -36,7 +36,7 @@ void buildLayeredTarget(CommandList& cl, int w, int h) {
   cl.clearDepth(1.0f);
 
   Mesh m;
-  const Vec3 centres[4] = {{-0.6f, -0.3f, 0}, {0.5f, 0.4f, -0.5f}, {0.1f, 0.0f, 0.6f}, {-0.2f, 0.6f, -1.0f}};
+  const glm::vec3 centres[4] = {{-0.6f, -0.3f, 0}, {0.5f, 0.4f, -0.5f}, {0.1f, 0.0f, 0.6f}, {-0.2f, 0.6f, -1.0f}};
   for (uint32_t i = 0; i < 4; ++i) box(m, centres[i], 0.45f, i);
   bindMesh(cl, m);
   // Records: object i -> layer i / 2, left or right half: x' = 0.5 x -/+ 0.5 w, y' = y.
@@ -50,7 +50,7 @@ void buildLayeredTarget(CommandList& cl, int w, int h) {
   rd.buffer = cl.createBuffer(BufferKind::Texel, recBytes);
   cl.bindTexture(0, cl.createTexture(rd));
   cl.useProgram(cl.createProgram("atlas_displace"));
-  setMatrix(cl, 0, perspective(60.0, 1.0, 0.1, 20.0) * lookAt({1.2f, 1.5f, 3.0f}, {0, 0, 0}, {0, 1, 0}));
+  setMatrix(cl, 0, mul(perspective(60.0, 1.0, 0.1, 20.0), lookAt({1.2f, 1.5f, 3.0f}, {0, 0, 0}, {0, 1, 0})));
   setVec4(cl, 7, {1, 1, 1, 1});
   RasterState rs;
   rs.clipMask = 0x0f;

@@ -18,8 +18,8 @@ void buildMipTunnel(CommandList& cl, int w, int h) {
   for (uint32_t l = 0; l < d.levels; ++l) {
     const uint32_t s = 256u >> l, cell = std::max(1u, 16u >> l);
     const auto& t = tints[l];
-    Image img = checker(s, s, cell, {t[0], t[1], t[2], 255},
-                        {uint8_t(t[0] / 3), uint8_t(t[1] / 3), uint8_t(t[2] / 3), 255});
+    RgbaImage img =
+        checker(s, s, cell, {t[0], t[1], t[2], 255}, {uint8_t(t[0] / 3), uint8_t(t[1] / 3), uint8_t(t[2] / 3), 255});
     cl.uploadTexture(tex, l, 0, img.rgba);
   }
   Mesh m;
@@ -36,7 +36,7 @@ void buildMipTunnel(CommandList& cl, int w, int h) {
   }
   const uint32_t n = bindMesh(cl, m);
   cl.useProgram(cl.createProgram("textured"));
-  setMatrix(cl, 0, perspective(70.0, double(w) / h, 0.1, 100.0) * lookAt({0.3f, 0.2f, 0}, {0, 0, -10}, {0, 1, 0}));
+  setMatrix(cl, 0, mul(perspective(70.0, double(w) / h, 0.1, 100.0), lookAt({0.3f, 0.2f, 0}, {0, 0, -10}, {0, 1, 0})));
   setTexturedDefaults(cl);
   DepthState ds;
   ds.test = true;

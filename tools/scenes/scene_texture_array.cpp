@@ -19,7 +19,8 @@ ResourceId makeArray(CommandList& cl, uint32_t size, uint32_t layers, uint32_t s
   for (uint32_t l = 0; l < layers; ++l) {
     const std::array<uint8_t, 4> a = {uint8_t(64 + rng.below(192)), uint8_t(64 + rng.below(192)),
                                       uint8_t(64 + rng.below(192)), 255};
-    Image img = checker(size, size, std::max(1u, size / 8), a, {uint8_t(a[0] / 4), uint8_t(a[1] / 4), uint8_t(a[2] / 4), 255});
+    RgbaImage img =
+        checker(size, size, std::max(1u, size / 8), a, {uint8_t(a[0] / 4), uint8_t(a[1] / 4), uint8_t(a[2] / 4), 255});
     const auto chain = buildMipChainRGBA8(size, size, img.rgba);
     for (uint32_t lev = 0; lev < chain.size(); ++lev) cl.uploadTexture(id, lev, l, chain[lev]);
   }
@@ -52,7 +53,7 @@ void buildTextureArray(CommandList& cl, int w, int h) {
   }
   const uint32_t n = bindMesh(cl, m);
   cl.useProgram(cl.createProgram("texarray_batch"));
-  setMatrix(cl, 0, perspective(50.0, double(w) / h, 0.1, 50.0) * lookAt({0.5f, -3.2f, 2.6f}, {0, 0, 0}, {0, 0, 1}));
+  setMatrix(cl, 0, mul(perspective(50.0, double(w) / h, 0.1, 50.0), lookAt({0.5f, -3.2f, 2.6f}, {0, 0, 0}, {0, 0, 1})));
   DepthState ds;
   ds.test = true;
   cl.setDepthState(ds);

@@ -7,7 +7,7 @@ namespace tessera::scenes {
 
 void buildWrapFilter(CommandList& cl, int w, int h) {
   beginFrame(cl, w, h, false, {0.1f, 0.1f, 0.1f, 1});
-  Image img{8, 8, std::vector<uint8_t>(8 * 8 * 4)};
+  RgbaImage img{8, 8, std::vector<uint8_t>(8 * 8 * 4)};
   for (uint32_t y = 0; y < 8; ++y)
     for (uint32_t x = 0; x < 8; ++x)
       img.set(x, y, {uint8_t(x * 32 + 16), uint8_t(y * 32 + 16), uint8_t(((x ^ y) & 1) ? 255 : 40), 255});
