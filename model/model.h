@@ -1,4 +1,4 @@
-// Textured scenes read from files: the input of the texture atlas tree (issue 4).
+// Textured scenes read from files: the input of the texture atlas tree (docs/model-import.md, docs/mta-build.md).
 //
 // Implements: an in-memory textured triangle scene (Model) read from glTF 2.0 (.gltf / .glb, embedded
 // or external images), OBJ + MTL, and everything Assimp reads (COLLADA .dae, AC3D .ac, glTF 1.0, ...);

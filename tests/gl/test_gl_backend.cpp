@@ -437,7 +437,7 @@ TEST(GlBackend, AFrameInWhichTheOracleFindsNoFreedomIsReproducedExactly) {
   Mesh m;
   m.quad({2, 2, 0}, {14, 2, 0}, {14, 9, 0}, {2, 9, 0}, {}, {}, {}, {});      // flat red
   m.quad({17, 3, 0}, {31, 3, 0}, {31, 12, 0}, {17, 12, 0}, {}, {}, {}, {});  // flat green
-  const std::array<float, 4> teal{0.2f, 0.6f, 1.0f, 1.0f};
+  const glm::vec4 teal{0.2f, 0.6f, 1.0f, 1.0f};
   m.quad({3, 16, 0}, {13, 16, 0}, {13, 29, 0}, {3, 29, 0}, teal, teal, teal, teal);  // vertex_color, constant
   m.quad({18, 18, 0}, {26, 18, 0}, {26, 24, 0}, {18, 24, 0}, {0, 0, 0, 0}, {1, 0, 0, 0}, {1, 0.75f, 0, 0},
          {0, 0.75f, 0, 0});  // textured: texels 0..3 x 0..2 of a 4 x 4 texture on 8 x 6 pixels
@@ -451,7 +451,7 @@ TEST(GlBackend, AFrameInWhichTheOracleFindsNoFreedomIsReproducedExactly) {
   cl.useProgram(cl.createProgram("vertex_color"));
   setMatrix(cl, 0, ortho(0, 32, 0, 32, -1, 1));
   cl.drawIndexed(12, 6);
-  scenes::Image img;
+  RgbaImage img;
   img.width = img.height = 4;
   img.rgba.resize(64);
   for (uint32_t y = 0; y < 4; ++y)

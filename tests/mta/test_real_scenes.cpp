@@ -20,7 +20,10 @@ void checkFile(const std::string& path, uint64_t trianglesIn) {
   for (const Tree& t : f.meta().trees) tris += t.geometry.triangleCount();
   EXPECT_EQ(tris, f.meta().stats.trianglesOut);
   for (uint32_t i = 0; i < f.meta().images.size(); ++i)
-    if (f.meta().images[i].pieceCount) EXPECT_EQ(f.readImage(i).size(), size_t(f.meta().images[i].width) * f.meta().images[i].height * f.meta().images[i].channels);
+    if (f.meta().images[i].pieceCount) {
+      EXPECT_EQ(f.readImage(i).size(),
+                size_t(f.meta().images[i].width) * f.meta().images[i].height * f.meta().images[i].channels);
+    }
 }
 
 TEST(RealScenes, RailwayGlbBuildsAValidTree) {

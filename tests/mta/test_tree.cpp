@@ -146,7 +146,9 @@ void checkTree(const Scene& s, const Tree& tree, const BuildParams& p) {
         ASSERT_LE(sx, 1.0 + 1e-6) << "node " << i;
         ASSERT_GE(sy, -1e-6);
         ASSERT_LE(sy, 1.0 + 1e-6);
-        if (sx > 1e-6 && sx < 1.0 - 1e-6) EXPECT_NEAR(toLocal(r.x, n.level), sx, 1e-6);
+        if (sx > 1e-6 && sx < 1.0 - 1e-6) {
+          EXPECT_NEAR(toLocal(r.x, n.level), sx, 1e-6);
+        }
         if (n.leaf()) {  // inside the texture's area of the leaf atlas
           const AtlasEntry* e = nullptr;
           for (const AtlasEntry& x : n.entries)

@@ -175,7 +175,7 @@ CommandList nearestFrame(float sOffset) {
   cl.setRenderTarget(t);
   cl.setViewport({0, 0, 16, 12});
   cl.clearColor(0, {0, 0, 0, 0});
-  Image img;
+  RgbaImage img;
   img.width = img.height = 4;
   img.rgba.resize(4 * 4 * 4);
   for (uint32_t y = 0; y < 4; ++y)
@@ -191,7 +191,7 @@ CommandList nearestFrame(float sOffset) {
   m.quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, {s0, 0, 0, 0}, {s1, 0, 0, 0}, {s1, 1, 0, 0}, {s0, 1, 0, 0});
   const uint32_t n = bindMesh(cl, m);
   cl.useProgram(cl.createProgram("textured"));
-  setMatrix(cl, 0, Mat4::identity());
+  setMatrix(cl, 0, glm::mat4(1.0f));
   setTexturedDefaults(cl);
   cl.drawIndexed(0, n);
   return cl;

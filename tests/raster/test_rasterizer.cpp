@@ -269,15 +269,15 @@ bool isLayeredClear(const uint8_t* p) {
 // corners through the scene's MVP, clipped to NDC [-1, 1] as its clip distances do, displaced, plus
 // 1 px. The projected box lies inside the hull of its projected corners.
 std::array<int, 4> objectBounds(int i) {
-  const Vec3 centres[4] = {{-0.6f, -0.3f, 0}, {0.5f, 0.4f, -0.5f}, {0.1f, 0.0f, 0.6f}, {-0.2f, 0.6f, -1.0f}};
-  const Mat4 mvp = perspective(60.0, 1.0, 0.1, 20.0) * lookAt({1.2f, 1.5f, 3.0f}, {0, 0, 0}, {0, 1, 0});
+  const glm::vec3 centres[4] = {{-0.6f, -0.3f, 0}, {0.5f, 0.4f, -0.5f}, {0.1f, 0.0f, 0.6f}, {-0.2f, 0.6f, -1.0f}};
+  const glm::mat4 mvp = mul(perspective(60.0, 1.0, 0.1, 20.0), lookAt({1.2f, 1.5f, 3.0f}, {0, 0, 0}, {0, 1, 0}));
   double x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9;
   for (int k = 0; k < 8; ++k) {
     const double p[4] = {centres[i].x + ((k & 1) ? 0.45 : -0.45), centres[i].y + ((k & 2) ? 0.45 : -0.45),
                          centres[i].z + ((k & 4) ? 0.45 : -0.45), 1.0};
     double c[4] = {0, 0, 0, 0};
     for (int row = 0; row < 4; ++row)
-      for (int col = 0; col < 4; ++col) c[row] += double(mvp.m[size_t(col * 4 + row)]) * p[col];
+      for (int col = 0; col < 4; ++col) c[row] += double(mvp[col][row]) * p[col];
     EXPECT_GT(c[3], 0.0) << "object " << i << " corner " << k << " behind the eye";
     const double nx = std::clamp(c[0] / c[3], -1.0, 1.0), ny = std::clamp(c[1] / c[3], -1.0, 1.0);
     x0 = std::min(x0, nx), x1 = std::max(x1, nx), y0 = std::min(y0, ny), y1 = std::max(y1, ny);
