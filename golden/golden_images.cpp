@@ -1,9 +1,6 @@
 #include "golden/golden_images.h"
 
-#include <fmt/format.h>
-
 #include "golden/railway_frames.h"
-#include "raster/cpu_backend.h"
 
 namespace tessera::golden {
 
@@ -14,27 +11,8 @@ std::string testName(std::string_view scene, uint32_t attachment, uint32_t layer
   return n;
 }
 
-void renderSceneImages(const scenes::SceneInfo& s, const ImageVisitor& visit) {
-  const std::string scene(s.name);
-  const CommandList list = scenes::build(s.name, s.width, s.height);
-  CpuBackend backend;
-  backend.execute(list, scene);
-  const std::string command = fmt::format("tessera render {} --size {}x{}", scene, s.width, s.height);
-  for (const PresentedImage& p : backend.presented()) {
-    RenderedImage img;
-    img.texture = backend.texture(p.texture);
-    img.name = testName(scene, p.attachment, p.layer, img.texture->desc.layers);
-    img.scene = scene;
-    img.attachment = p.attachment;
-    img.layer = p.layer;
-    img.level = p.level;
-    img.command = command;
-    visit(img);
-  }
-}
-
-void renderGoldenImages(const std::string& railwayPath, const ImageVisitor& visit) {
-  for (const scenes::SceneInfo& s : scenes::all()) renderSceneImages(s, visit);
+void renderGoldenImages(const ImageSource& source, const std::string& railwayPath, const ImageVisitor& visit) {
+  if (source) source(visit);
   if (railwayPath.empty()) return;
   for (const RailwayFrame& f : railwayFrames(railwayPath)) {
     RenderedImage img;

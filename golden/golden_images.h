@@ -1,10 +1,11 @@
-// The images that the golden set covers, rendered now: every presented image of every built-in scene,
-// then the atlas tree frames of railway.glb (railway_frames.h).
+// The images that the golden set covers, rendered now: the images of the caller's frames (the
+// built-in scenes: tools/scenes/scene_goldens.h), then the atlas tree frames of railway.glb
+// (railway_frames.h).
 //
-// Implements: rendering them in a fixed order (scenes in scenes::all() order, each scene's presented
-// images in presentation order, then the frames) and naming each with its test name (manifest.h).
-// Dependency: the golden set is defined by the built-in scenes, so tessera_golden links tessera_scenes
-// (tools/scenes/), a library that lives under tools/ but is a plain library without the CLI.
+// Implements: the record of one rendered image and its test name (manifest.h), and visiting them in a
+// fixed order: the caller's source first, then the frames.
+// Dependency: the golden module does not know the built-in scenes (they live in tools/, above every
+// library); the CLI and the tests pass them in as an ImageSource.
 // Does not implement: comparing (golden_diff.h) or the check / update runs (golden_run.h).
 #pragma once
 
@@ -14,7 +15,6 @@
 #include <string_view>
 
 #include "raster/texture.h"
-#include "tools/scenes/scenes.h"
 
 namespace tessera::golden {
 
@@ -34,11 +34,11 @@ using ImageVisitor = std::function<void(const RenderedImage&)>;
 // texture with more than one layer.
 std::string testName(std::string_view scene, uint32_t attachment, uint32_t layer, uint32_t layers);
 
-// Renders one built-in scene at its default size on the oracle and visits every presented image.
-void renderSceneImages(const scenes::SceneInfo& scene, const ImageVisitor& visit);
+// Renders a set of images and visits each one (in a fixed order).
+using ImageSource = std::function<void(const ImageVisitor&)>;
 
-// Every built-in scene, then (unless railwayPath is empty) the atlas tree frames of railwayPath.
+// `source` (if any), then (unless railwayPath is empty) the atlas tree frames of railwayPath.
 // Throws Error naming railwayPath when it is given but missing.
-void renderGoldenImages(const std::string& railwayPath, const ImageVisitor& visit);
+void renderGoldenImages(const ImageSource& source, const std::string& railwayPath, const ImageVisitor& visit);
 
 }  // namespace tessera::golden

@@ -24,7 +24,7 @@ GoldenReport run(const GoldenOptions& o, bool update) {
     std::filesystem::create_directories(o.dir + "/images", ec);
     if (ec) throw Error(o.dir + "/images: cannot create: " + ec.message());
   }
-  renderGoldenImages(o.railway, [&](const RenderedImage& img) {
+  renderGoldenImages(o.sceneImages, o.railway, [&](const RenderedImage& img) {
     seen.insert(img.name);
     const TextureData& tex = *img.texture;
     const std::vector<uint8_t> pixels = imagePixels(tex, img.level, img.layer);

@@ -1,7 +1,7 @@
 // `tessera golden check | update` as a library: the golden images under golden/ (Filament-style
 // workflow; README.md, CONTRIBUTING.md "Golden bytes are sacred").
 //
-// Implements: check (render every golden image, golden_images.h, and demand that each matches its
+// Implements: check (render every golden image: options.sceneImages, then the railway frames, and demand that each matches its
 // golden file bit-exactly, golden_diff.h; an entry that no image has any more is stale) and update
 // (the same, then rewrite the image file and the manifest entry of every rendered image, or with
 // onlyFailing of every image that did not match; stale entries are removed; the report lists every
@@ -15,9 +15,13 @@
 #include <string>
 #include <vector>
 
+#include "golden/golden_images.h"
+
 namespace tessera::golden {
 
 struct GoldenOptions {
+  // The built-in scenes' images (tools/scenes/scene_goldens.h); empty: none (their entries are stale).
+  ImageSource sceneImages;
   std::string dir = "golden";                // holds manifest.json and images/
   std::string railway = "data/railway.glb";  // "": the built-in scenes only (mta_railway entries are left alone)
   bool onlyFailing = false;                  // update: rewrite only the images that do not match

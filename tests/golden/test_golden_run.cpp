@@ -11,6 +11,7 @@
 #include "golden/golden_run.h"
 #include "golden/manifest.h"
 #include "golden/railway_frames.h"
+#include "tools/scenes/scene_goldens.h"
 #include "raster/image_io.h"
 
 using namespace tessera;
@@ -114,6 +115,7 @@ TEST(GoldenRun, UpdateRecreatesTheShippedEntriesAndCheckThenReportsEachKindOfDif
   golden::GoldenOptions o;
   o.dir = dir.str();
   o.railway = "";  // the built-in scenes only
+  o.sceneImages = scenes::allSceneImages();
 
   // Into an empty directory: every image is new, and its entry is the shipped one.
   const golden::GoldenReport created = golden::updateGoldens(o);

@@ -1,7 +1,8 @@
 // Every build type (Release, Debug, ASan) must reproduce the golden images bit-exactly: this is the
 // test that the oracle's bytes depend neither on the optimization level nor on sanitizers.
 // After an intended change: `build/tessera golden update` and commit the images with the reason.
-// The manifest, the rendering of the scenes and the comparison are the golden module's (golden/).
+// The manifest and the comparison are the golden module's (golden/); the scenes' images come from
+// tools/scenes/scene_goldens.h.
 #include <gtest/gtest.h>
 
 #include <set>
@@ -11,6 +12,7 @@
 #include "golden/manifest.h"
 #include "golden/railway_frames.h"
 #include "raster/image_io.h"
+#include "tools/scenes/scene_goldens.h"
 #include "tools/scenes/scenes.h"
 
 using namespace tessera;
@@ -52,7 +54,7 @@ TEST(Golden, TheShippedManifestIsValid) { EXPECT_NO_THROW(golden::readManifest(k
 TEST(Golden, EveryScenePresentsOnlyImagesThatHaveAGoldenEntry) {
   std::set<std::string> presented;
   for (const auto& s : scenes::all()) {
-    golden::renderSceneImages(s, [&](const golden::RenderedImage& img) {
+    scenes::renderSceneImages(s, [&](const golden::RenderedImage& img) {
       presented.insert(img.name);
       EXPECT_TRUE(manifest().tests.count(img.name)) << img.name << " has no golden image";
     });
@@ -71,7 +73,7 @@ TEST_P(GoldenImage, OracleReproducesTheGoldenImageBitExactly) {
   ASSERT_NE(info, nullptr) << "golden entry names an unknown scene";
   ASSERT_EQ(int(e.width), info->width);
   bool found = false;
-  golden::renderSceneImages(*info, [&](const golden::RenderedImage& img) {
+  scenes::renderSceneImages(*info, [&](const golden::RenderedImage& img) {
     if (img.name != GetParam()) return;
     found = true;
     EXPECT_EQ(img.attachment, e.attachment);

@@ -9,6 +9,7 @@
 #include "golden/golden_run.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/repo_paths.h"
+#include "tools/scenes/scene_goldens.h"
 
 namespace tessera::cli {
 
@@ -32,6 +33,7 @@ void addGoldenCommands(CLI::App& app) {
   auto* golden = app.add_subcommand("golden", "Check or regenerate the golden images (golden/manifest.json)");
   golden->require_subcommand(1);
   auto a = std::make_shared<golden::GoldenOptions>();
+  a->sceneImages = scenes::allSceneImages();
   auto* check =
       golden->add_subcommand("check", "Re-render every scene; demand bit-exact pixels (exit 1 on any difference)");
   check->add_option("--dir", a->dir, "Golden directory")->capture_default_str();
