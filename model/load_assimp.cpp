@@ -1,5 +1,5 @@
-// Every other format through Assimp (Debian's libassimp): COLLADA .dae, AC3D .ac, glTF 1.0, 3DS,
-// FBX, PLY, ... whatever Assimp's importers read.
+// Every other format through Assimp (Debian's libassimp): COLLADA .dae, glTF 1.0, 3DS, FBX, PLY, ...
+// whatever Assimp's importers read. AC3D never comes here: load_ac3d.cpp reads it.
 //
 // Post-processing is limited to Triangulate + SortByPType (points and lines are removed and noted);
 // node transforms are composed here in double rather than by PreTransformVertices (float). The

@@ -9,6 +9,7 @@
 #include <string>
 #include <string_view>
 
+#include "base/resource_limits.h"
 #include "model/model.h"
 
 namespace tessera::model::detail {
@@ -16,6 +17,9 @@ namespace tessera::model::detail {
 Model loadGltf(const std::string& path);    // load_gltf.cpp; hands glTF 1.0 to loadAssimp
 Model loadObj(const std::string& path);     // load_obj.cpp
 Model loadAssimp(const std::string& path);  // load_assimp.cpp
+// load_ac3d.cpp: AC3D .ac and TORCS .acc, parsed without Assimp. Throws Error("<file>:<line>: <reason>")
+// for malformed input and overLimitMessage() when the model exceeds `limits`.
+Model loadAc3d(const std::string& path, const ResourceLimits& limits);
 
 // Percent-decoding of a relative URI reference ("a%20b.png" -> "a b.png"); a "file://" prefix is dropped.
 std::string uriDecode(std::string_view uri);

@@ -83,8 +83,11 @@ Model loadModel(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   Model m;
-  if (std::memcmp(magic, "glTF", 4) == 0 || ext == ".gltf" || ext == ".glb")
+  const bool ac3d = std::memcmp(magic, "AC3D", 4) == 0;
+  if (std::memcmp(magic, "glTF", 4) == 0 || (!ac3d && (ext == ".gltf" || ext == ".glb")))
     m = detail::loadGltf(path);
+  else if (ac3d || ext == ".ac" || ext == ".acc" || ext == ".ac3d")
+    m = detail::loadAc3d(path, ResourceLimits{});
   else if (ext == ".obj")
     m = detail::loadObj(path);
   else

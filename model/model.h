@@ -1,7 +1,8 @@
 // Textured scenes read from files: the input of the texture atlas tree (docs/model-import.md, docs/mta-build.md).
 //
 // Implements: an in-memory textured triangle scene (Model) read from glTF 2.0 (.gltf / .glb, embedded
-// or external images), OBJ + MTL, and everything Assimp reads (COLLADA .dae, AC3D .ac, glTF 1.0, ...);
+// or external images), OBJ + MTL, AC3D (.ac, TORCS .acc; the project's own reader) and everything
+// Assimp reads (COLLADA .dae, glTF 1.0, ...);
 // lazy texture access: a Model only says where each image's bytes are, and loadTexture() /
 // probeTexture() decode or measure one image at a time through OpenImageIO, so a consumer that works
 // out of core never holds more than the textures it asked for.
@@ -93,7 +94,7 @@ struct Model {
   std::vector<TextureRef> textures;  // one per distinct image
   Bounds bounds;                     // of every position of every mesh
   std::string source;                // the file it was read from
-  std::string loader;                // "gltf", "obj" or "assimp:<format>"
+  std::string loader;                // "gltf", "obj", "ac3d" or "assimp:<format>"
   std::vector<std::string> notes;    // what was dropped or assumed (points/lines, unsupported maps, ...)
 
   size_t triangleCount() const;
@@ -111,9 +112,10 @@ struct TextureInfo {
   std::string format;  // OIIO's format name: "png", "jpeg", "targa", "sgi", "dds", ...
 };
 
-// Reads a model file. The loader is chosen by content first (a .glb / glTF 1.0 / glTF 2.0 header),
-// then by extension: .gltf / .glb -> tinygltf (glTF 1.0 goes to Assimp), .obj -> tinyobjloader,
-// anything else -> Assimp. Image files are checked to exist but not read.
+// Reads a model file. The loader is chosen by content first (a .glb / glTF 1.0 / glTF 2.0 header, an
+// AC3D header), then by extension: .gltf / .glb -> tinygltf (glTF 1.0 goes to Assimp), .obj ->
+// tinyobjloader, .ac / .acc / .ac3d -> the AC3D reader, anything else -> Assimp. Image files are
+// checked to exist but not read.
 // Throws Error naming the file and what is wrong: the JSON pointer for malformed glTF
 // ("/accessors/3/bufferView: ..."), the model and the missing path for a missing texture.
 Model loadModel(const std::string& path);

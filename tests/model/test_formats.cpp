@@ -1,6 +1,7 @@
 // Each loader on a small file written by the test: glTF 2.0 features (data: URIs, external images,
-// strips, fans, normalized texcoords, KHR_texture_transform, node TRS), OBJ + MTL, COLLADA and AC3D
-// through Assimp. Texcoords far outside [0, 1] must come through unclamped.
+// strips, fans, normalized texcoords, KHR_texture_transform, node TRS), OBJ + MTL, COLLADA through
+// Assimp (AC3D has its own reader: test_ac3d.cpp). Texcoords far outside [0, 1] must come through
+// unclamped.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -208,27 +209,6 @@ TEST(AssimpLoader, ColladaFileLoadsWithItsPercentEncodedTextureAndNodeTranslatio
   EXPECT_EQ(m.meshes[0].positions[0].z, 5.0f);
   EXPECT_TRUE(hasTexcoord(m.meshes[0], 2500.0f, -2.0f));  // T = 3 flipped to v = 1 - 3
   EXPECT_EQ(loadTexture(m, 0).width, 8u);
-}
-
-TEST(AssimpLoader, Ac3dFileLoadsWithItsTextureAndRepeatedTexcoords) {
-  ScratchDir dir;
-  testing::writeChecker(dir / "wall.png", 4, 2);
-  testing::writeFile(dir / "wall.ac",
-                     "AC3Db\n"
-                     "MATERIAL \"wall\" rgb 1 1 1  amb 0.2 0.2 0.2  emis 0 0 0  spec 0.5 0.5 0.5  shi 10  trans 0\n"
-                     "OBJECT world\nkids 1\n"
-                     "OBJECT poly\nname \"wall\"\ntexture \"wall.png\"\nnumvert 4\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
-                     "numsurf 1\nSURF 0x10\nmat 0\nrefs 4\n0 0 0\n1 3000 0\n2 3000 1\n3 0 1\nkids 0\n");
-  const Model m = loadModel(dir / "wall.ac");
-  EXPECT_EQ(m.loader, "assimp:ac");
-  EXPECT_EQ(m.triangleCount(), 2u);
-  ASSERT_EQ(m.textures.size(), 1u);
-  ASSERT_FALSE(m.meshes.empty());
-  float maxU = 0;
-  for (const Mesh& mesh : m.meshes)
-    for (const glm::vec2& t : mesh.texcoords) maxU = std::max(maxU, t.x);
-  EXPECT_EQ(maxU, 3000.0f);
-  EXPECT_EQ(probeTexture(m, 0).height, 2u);
 }
 
 }  // namespace
