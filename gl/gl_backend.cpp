@@ -380,7 +380,7 @@ const GlOptions& GlBackend::options() const { return impl_->options; }
 void GlBackend::execute(const CommandList& list, std::string_view frameName) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
-  validateOrThrow(list, frameName);
+  validateOrThrow(list, frameName, impl_->options.limits);
   impl_->context->makeCurrent();
   drainErrors();  // errors of earlier misuse must not be blamed on this frame
   impl_->run(list, frameName);

@@ -27,6 +27,7 @@
 #include <string_view>
 #include <vector>
 
+#include "base/resource_limits.h"
 #include "gl/gl_info.h"
 #include "raster/command_list.h"
 #include "raster/cpu_backend.h"
@@ -43,6 +44,8 @@ struct GlOptions {
   bool strict = false;
   // A KHR_debug context; glGetError after every command, reported with the command index.
   bool debug = false;
+  // execute() refuses a list over limits.frameBytes before creating any GL object (raster/validate.h).
+  ResourceLimits limits;
 };
 
 // GL calls issued by the last execute(). The first eight mirror commands one to one, so for a valid
@@ -89,9 +92,10 @@ class GlBackend {
   const GlInfo& info() const;
   const GlOptions& options() const;
 
-  // Validates the list (validateOrThrow: Error naming `frameName` and the command index), then
-  // replays it and waits for GL to finish (glFinish). GL errors throw Error: with the command index
-  // in debug mode, else once at the end of the frame.
+  // Validates the list against options().limits (validateOrThrow: Error naming `frameName` and the
+  // command index) before creating any GL object, then replays it and waits for GL to finish
+  // (glFinish). GL errors throw Error: with the command index in debug mode, else once at the end of
+  // the frame.
   void execute(const CommandList& list, std::string_view frameName = "frame");
 
   std::vector<PresentedImage> presented() const;

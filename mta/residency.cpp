@@ -4,6 +4,7 @@
 #include <charconv>
 #include <chrono>
 
+#include "base/byte_size.h"
 #include "base/error.h"
 
 namespace tessera::mta {
@@ -31,16 +32,14 @@ LoadBudget LoadBudget::parse(const std::string& text, const std::string& what) {
   const char* e = text.data() + text.size();
   auto [p, ec] = std::from_chars(b, e, v);
   if (ec != std::errc() || !(v > 0.0) || !(v < 1e18))
-    throw Error(what + ": '" + text + "' is not a positive number with an optional unit (B, KiB, MiB, GiB, blocks, ms)");
+    throw Error(what + ": '" + text + "' is not a positive number with an optional unit (B, KiB, MiB, GiB, TiB, blocks, ms)");
   const std::string unit(p, e);
   LoadBudget r;
-  if (unit.empty() || unit == "B") r.kind = Kind::Bytes, r.perFrame = uint64_t(v);
-  else if (unit == "KiB" || unit == "k") r.kind = Kind::Bytes, r.perFrame = uint64_t(v * 1024.0);
-  else if (unit == "MiB" || unit == "M") r.kind = Kind::Bytes, r.perFrame = uint64_t(v * 1048576.0);
-  else if (unit == "GiB" || unit == "G") r.kind = Kind::Bytes, r.perFrame = uint64_t(v * 1073741824.0);
+  // Byte sizes have one parser (base/byte_size.h): exact for whole numbers, overflow-checked.
+  if (isByteUnit(unit)) r.kind = Kind::Bytes, r.perFrame = parseByteSize(text, what);
   else if (unit == "blocks" || unit == "block") r.kind = Kind::Blocks, r.perFrame = uint64_t(v);
   else if (unit == "ms") r.kind = Kind::Time, r.slotMs = v;
-  else throw Error(what + ": unknown unit '" + unit + "' in '" + text + "' (use B, KiB, MiB, GiB, blocks or ms)");
+  else throw Error(what + ": unknown unit '" + unit + "' in '" + text + "' (use B, KiB, MiB, GiB, TiB, blocks or ms)");
   if (r.kind != Kind::Time && r.perFrame == 0) throw Error(what + ": '" + text + "' rounds to zero");
   return r;
 }

@@ -372,7 +372,7 @@ CpuBackend::CpuBackend(RenderOptions options) : impl_(std::make_unique<Impl>()) 
 CpuBackend::~CpuBackend() = default;
 
 void CpuBackend::execute(const CommandList& list, std::string_view frameName) {
-  validateOrThrow(list, frameName);
+  validateOrThrow(list, frameName, impl_->options.limits);
   // A list is a whole frame that starts from GL's initial state (command_list.h): nothing of an earlier
   // execute() may leak into it, so a backend reused for a sequence of frames starts afresh each time.
   if (impl_->executed) {

@@ -14,6 +14,7 @@
 #include <string_view>
 #include <vector>
 
+#include "base/resource_limits.h"
 #include "raster/command_list.h"
 #include "raster/pipeline.h"
 #include "raster/texture.h"
@@ -23,6 +24,7 @@ namespace tessera {
 struct RenderOptions {
   int threads = 0;          // 0 = all hardware threads
   bool provenance = false;  // also record per-pixel intervals and ambiguity classes (provenance.h)
+  ResourceLimits limits;    // execute() refuses a list over limits.frameBytes before allocating (validate.h)
 };
 
 // One presented image: attachment `attachment` of the final target at (level, layer).
@@ -38,8 +40,9 @@ class CpuBackend {
   CpuBackend(const CpuBackend&) = delete;
   CpuBackend& operator=(const CpuBackend&) = delete;
 
-  // Validates the list (throws Error naming `frameName` and the command index) and runs it from GL's
-  // initial state: resources and state of an earlier execute() are dropped first.
+  // Validates the list against options.limits (throws Error naming `frameName` and the command index)
+  // before anything is allocated, and runs it from GL's initial state: resources and state of an
+  // earlier execute() are dropped first.
   void execute(const CommandList& list, std::string_view frameName = "frame");
 
   const TextureData* texture(ResourceId id) const;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <memory>
+#include <optional>
 #include <unordered_map>
 
 #include "raster/program.h"
@@ -135,13 +136,56 @@ struct Resource {
   SamplerState sampler;  // samplers
 };
 
+// Bytes a backend allocates for a texture with a valid description: every level of every layer.
+// Buffer textures own no storage (their texels are the buffer's bytes). nullopt on overflow, which
+// valid sizes cannot reach; the arithmetic is checked so that this stays true if the limits grow.
+std::optional<uint64_t> textureBytes(const TextureDesc& d) {
+  if (d.kind == TextureKind::Buffer) return 0;
+  std::optional<uint64_t> sum = 0;
+  for (uint32_t level = 0; level < d.levels && sum; ++level) {
+    const std::optional<uint64_t> bytes = checkedMul(levelBytes(d, level), d.layers);
+    sum = bytes ? checkedAdd(*sum, *bytes) : std::nullopt;
+  }
+  return sum;
+}
+
+// The running total of a frame's memory (validate.h): where it first went over the budget and what the
+// whole frame needs (nullopt once the sum no longer fits in 64 bits).
+class FrameMemory {
+ public:
+  explicit FrameMemory(uint64_t budget) : budget_(budget) {}
+
+  void add(std::optional<uint64_t> bytes, size_t command) {
+    if (total_) total_ = bytes ? checkedAdd(*total_, *bytes) : std::nullopt;
+    if (!firstOver_ && (!total_ || *total_ > budget_)) firstOver_ = command;
+  }
+
+  // The diagnostic, if the frame is over the budget.
+  std::optional<Diagnostic> verdict() const {
+    if (!firstOver_) return std::nullopt;
+    return Diagnostic{*firstOver_, overLimitMessage("frame", "of textures, buffers and render targets", total_, budget_,
+                                                    "--memory-budget", true)};
+  }
+
+ private:
+  uint64_t budget_;
+  std::optional<uint64_t> total_ = 0;
+  std::optional<size_t> firstOver_;
+};
+
 class Validator {
  public:
-  explicit Validator(const CommandList& list) : list_(list) {}
+  Validator(const CommandList& list, const ResourceLimits& limits) : list_(list), memory_(limits.frameBytes) {}
 
   std::vector<Diagnostic> run() {
     const auto& cmds = list_.commands();
     for (cur_ = 0; cur_ < cmds.size(); ++cur_) std::visit([this](const auto& c) { check(c); }, cmds[cur_]);
+    // Known only at the end (the message gives the whole frame's need); inserted in command order.
+    if (std::optional<Diagnostic> over = memory_.verdict()) {
+      const auto at = std::upper_bound(out_.begin(), out_.end(), over->command,
+                                       [](size_t command, const Diagnostic& d) { return command < d.command; });
+      out_.insert(at, std::move(*over));
+    }
     return std::move(out_);
   }
 
@@ -206,6 +250,7 @@ class Validator {
     if (!r) return;
     r->desc = c.desc;
     r->valid = checkDesc(c.desc);
+    if (r->valid) memory_.add(textureBytes(c.desc), cur_);
   }
 
   bool checkDesc(const TextureDesc& d) {
@@ -290,6 +335,7 @@ class Validator {
     r->bufferKind = c.kind;
     r->size = c.size;
     r->contents = ShadowBuffer(c.size);
+    memory_.add(c.size, cur_);
     if (!enumOk(c.kind)) {
       report("kind = {} is out of range", unsigned(c.kind));
       r->valid = false;
@@ -710,6 +756,7 @@ class Validator {
   }
 
   const CommandList& list_;
+  FrameMemory memory_;
   std::vector<Diagnostic> out_;
   size_t cur_ = 0;
   std::unordered_map<ResourceId, Resource> res_;
@@ -725,10 +772,12 @@ class Validator {
 
 }  // namespace
 
-std::vector<Diagnostic> validate(const CommandList& list) { return Validator(list).run(); }
+std::vector<Diagnostic> validate(const CommandList& list, const ResourceLimits& limits) {
+  return Validator(list, limits).run();
+}
 
-void validateOrThrow(const CommandList& list, std::string_view frameName) {
-  const std::vector<Diagnostic> diags = validate(list);
+void validateOrThrow(const CommandList& list, std::string_view frameName, const ResourceLimits& limits) {
+  const std::vector<Diagnostic> diags = validate(list, limits);
   if (diags.empty()) return;
   constexpr size_t kShown = 10;
   std::string msg =

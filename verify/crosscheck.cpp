@@ -33,7 +33,7 @@ struct Side {
 
 Side runBoth(const CommandList& list, std::string_view name, const CrosscheckOptions& o, const OtherBackend& other) {
   Side s;
-  s.oracle = std::make_unique<CpuBackend>(RenderOptions{o.threads, true});
+  s.oracle = std::make_unique<CpuBackend>(RenderOptions{o.threads, true, o.limits});
   const auto t0 = Clock::now();
   s.oracle->execute(list, name);
   s.oracleMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -71,9 +71,9 @@ OtherBackend glOther(gl::GlBackend& gl, std::shared_ptr<std::optional<gl::GlCall
           }};
 }
 
-OtherBackend fastPathOther(int threads) {
-  return {"cpu", [threads](const CommandList& list, std::string_view name, double& ms) {
-            CpuBackend b(RenderOptions{threads, false});
+OtherBackend fastPathOther(int threads, const ResourceLimits& limits) {
+  return {"cpu", [threads, limits](const CommandList& list, std::string_view name, double& ms) {
+            CpuBackend b(RenderOptions{threads, false, limits});
             const auto t0 = Clock::now();
             b.execute(list, name);
             ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -154,7 +154,7 @@ CrosscheckResult crosscheck(const CommandList& list, std::string_view frameName,
                             gl::GlBackend* gl) {
   if (!gl && !o.selfCheck) throw Error("crosscheck: no GL backend");
   auto firstCalls = std::make_shared<std::optional<gl::GlCallCounts>>();
-  CrosscheckResult r = crosscheck(list, frameName, o, gl ? glOther(*gl, firstCalls) : fastPathOther(o.threads));
+  CrosscheckResult r = crosscheck(list, frameName, o, gl ? glOther(*gl, firstCalls) : fastPathOther(o.threads, o.limits));
   if (gl && *firstCalls) {
     r.json["counters"] = counterEquality(list, **firstCalls);
     r.json["gl_calls"] = (*firstCalls)->toJson();

@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "base/resource_limits.h"
 #include "gl/gl_backend.h"
 #include "raster/command_list.h"
 #include "verify/judge.h"
@@ -23,6 +24,7 @@ struct CrosscheckOptions {
   int threads = 0;     // oracle worker threads (GL's are set when its backend is created)
   bool bisect = true;  // on failure, find the first diverging draw
   bool selfCheck = false;  // "--backends cpu,cpu": judge the oracle's fast path against its own provenance
+  ResourceLimits limits;   // the oracle's frame budget (the GL backend has its own: GlOptions::limits)
 };
 
 struct ImageVerdict {

@@ -33,8 +33,8 @@ VisibilityResult castAndJudge(const CommandList& list, const IdImages& oracle, c
 
 }  // namespace
 
-IdImages renderOracleIds(const CommandList& list, int threads) {
-  CpuBackend backend(RenderOptions{threads});
+IdImages renderOracleIds(const CommandList& list, int threads, const ResourceLimits& limits) {
+  CpuBackend backend(RenderOptions{threads, false, limits});
   backend.execute(list, "visibility");
   IdImages ids;
   const TextureData* planes[2] = {nullptr, nullptr};
@@ -66,13 +66,13 @@ IdImages renderOracleIds(const CommandList& list, int threads) {
 }
 
 VisibilityResult compareVisibility(const CommandList& list, const IdImages& oracle, const VisibilityOptions& options) {
-  validateOrThrow(list, "visibility");
+  validateOrThrow(list, "visibility", options.limits);
   return castAndJudge(list, oracle, options);
 }
 
 VisibilityResult castVisibility(const CommandList& list, const VisibilityOptions& options) {
   // CpuBackend::execute validates the list (and throws naming the command) before rendering.
-  const IdImages oracle = renderOracleIds(list, options.threads);
+  const IdImages oracle = renderOracleIds(list, options.threads, options.limits);
   return castAndJudge(list, oracle, options);
 }
 

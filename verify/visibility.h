@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "base/resource_limits.h"
 #include "raster/command_list.h"
 
 namespace tessera::verify {
@@ -41,6 +42,7 @@ struct VisibilityOptions {
   // Embree ISA, pinned so that Embree's own float arithmetic is the same on every machine of a kind.
   // Tried in order; the first that creates a device wins.
   std::vector<std::string> isas = {"avx2", "sse4.2"};
+  ResourceLimits limits;  // the frame budget of the oracle render and of validation (raster/validate.h)
 };
 
 // The ID images of a frame, GL row order (row 0 = bottom), width * height entries each.
@@ -92,7 +94,7 @@ VisibilityResult castVisibility(const CommandList& list, const VisibilityOptions
 
 // The parts, for callers that have the oracle images already (or want to perturb them).
 // Renders `list` on CpuBackend and reads attachments 0 and 1 (R32UI) and the depth of the final target.
-IdImages renderOracleIds(const CommandList& list, int threads = 0);
+IdImages renderOracleIds(const CommandList& list, int threads = 0, const ResourceLimits& limits = {});
 VisibilityResult compareVisibility(const CommandList& list, const IdImages& oracle,
                                    const VisibilityOptions& options = {});
 

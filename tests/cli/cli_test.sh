@@ -6,6 +6,14 @@ src=$(cd "$(dirname "$0")/../.." && pwd)
 rm -rf "$work"; mkdir -p "$work"; cd "$work"
 fail() { echo "FAIL: $*" >&2; exit 1; }
 json_field() { python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print(eval('d'+sys.argv[2]))" "$1" "$2"; }
+# refused STATUS TEXT COMMAND...: COMMAND exits with STATUS, says TEXT on stderr, and is no internal error.
+refused() {
+  local want=$1 text=$2; shift 2
+  local rc=0; "$@" > refused.out 2> refused.err || rc=$?
+  [ "$rc" = "$want" ] || fail "$*: exit status $rc, expected $want: $(cat refused.err)"
+  grep -qF -- "$text" refused.err || fail "$*: the message lacks '$text': $(cat refused.err)"
+  ! grep -qi "internal error" refused.err || fail "$*: $(cat refused.err)"
+}
 
 case "$case_name" in
   demo_writes_report_and_images)
@@ -181,6 +189,153 @@ PY
     "$tessera" mta build city/*.gltf -o tree.mta --d-min 50 --quiet > /dev/null
     ls tree.mta.tmp-* > /dev/null 2>&1 && fail "the next build left the stale temporary: $(ls tree.mta.tmp-*)"
     "$tessera" mta info tree.mta > /dev/null || fail "the new tree.mta is not valid"
+    ;;
+  parse_errors_exit_2)
+    # What CLI11 refuses is bad input like any other (the README promises 2), with CLI11's message.
+    refused 2 "The following argument was not expected: --bogus" "$tessera" render blend --bogus
+    refused 2 "The following argument was not expected: extra" "$tessera" render blend extra
+    refused 2 "--threads: 1 required" "$tessera" render blend --threads
+    refused 2 "scene is required" "$tessera" render
+    refused 2 "A subcommand is required" "$tessera"
+    refused 2 "A subcommand is required" "$tessera" mta
+    refused 2 "--buildings: Value 0 not in range 1 to 1000000" "$tessera" city --preset berlin --buildings 0 -o c
+    refused 2 "Could not convert: --seed = abc" "$tessera" city --preset berlin --seed abc -o c
+    refused 2 "--threads 'abc': not a whole number" "$tessera" render blend --threads abc
+    # Help is no error.
+    "$tessera" --help > help.txt || fail "--help exits $?"
+    "$tessera" mta render --help > help.txt || fail "mta render --help exits $?"
+    [ ! -e c ] || fail "a refused command wrote its output directory"
+    ;;
+  output_in_the_way_exits_2)
+    printf 'not a directory' > afile
+    refused 2 "afile: exists and is not a directory (-o names the output directory)" \
+      "$tessera" demo -o afile --no-gl --no-mta --no-thread-check
+    refused 2 "afile: exists and is not a directory" "$tessera" city --preset berlin --buildings 2 -o afile --quiet
+    # The output directory is checked before the tree is opened (tree.mta does not even exist).
+    refused 2 "afile/sub: cannot create the directory: afile is not a directory" \
+      "$tessera" mta render tree.mta -o afile/sub --quiet
+    refused 2 "afile/x/y: cannot create the directory: afile is not a directory" "$tessera" mta runs tree.mta -o afile/x/y
+    refused 2 "afile: exists and is not a directory" "$tessera" texel tree.mta -o afile
+    refused 2 "afile: exists and is not a directory (--report names the output directory)" \
+      "$tessera" crosscheck blend --backends cpu,cpu --report afile
+    "$tessera" render blend -o a.png > /dev/null
+    refused 2 "afile/r: cannot create the directory: afile is not a directory (--report names" \
+      "$tessera" compare a.png a.png --report afile/r
+    # A file output where a directory is, or under a file.
+    mkdir adir
+    refused 2 "adir" "$tessera" render blend -o adir
+    refused 2 "afile/x.png" "$tessera" render blend -o afile/x.png
+    refused 2 "afile/s.json" "$tessera" render blend --stats afile/s.json
+    # Unwritable places: /proc refuses new entries even to root; a read-only directory refuses others.
+    refused 2 "/proc/tessera_cli_test: cannot create the directory" "$tessera" demo -o /proc/tessera_cli_test --no-gl --no-mta
+    if [ "$(id -u)" != 0 ]; then
+      mkdir ro && chmod 555 ro
+      refused 2 "ro/out: cannot create the directory: Permission denied" "$tessera" demo -o ro/out --no-gl --no-mta
+      refused 2 "ro: cannot write into it" "$tessera" demo -o ro --no-gl --no-mta
+      chmod 755 ro
+    fi
+    [ "$(cat afile)" = "not a directory" ] || fail "afile was changed"
+    ;;
+  threads_above_the_bound_exit_2)
+    # One bound, kMaxThreads = 256 (docs/limits.md), for every --threads; checked before any work, so the
+    # missing inputs below are never opened.
+    for cmd in "render blend" "replay none.tframe" "demo -o d --no-gl --no-mta" "crosscheck blend" "visibility city_ids" \
+               "bench crosscheck blend" "mta build none.glb -o t.mta" "mta render none.mta -o r" "mta runs none.mta -o r" \
+               "texel none.mta -o r"; do
+      for n in 257 100000; do
+        # shellcheck disable=SC2086
+        refused 2 "--threads '$n': more than the limit of 256 worker threads" "$tessera" $cmd --threads $n
+      done
+    done
+    refused 2 "--threads '4294967297': more than the limit of 256" "$tessera" mta build none.glb -o t.mta --threads 4294967297
+    refused 2 "--threads '-1': not a whole number (0..256" "$tessera" mta render none.mta -o r --threads -1
+    [ ! -e d ] && [ ! -e r ] || fail "a refused command wrote its output directory"
+    "$tessera" render blend --threads 0 > /dev/null || fail "--threads 0 (all cores) refused"
+    "$tessera" render blend --threads 3 --size 32x16 > s.json || fail "--threads 3 refused"
+    [ "$(json_field s.json "['threads']")" = 3 ] || fail "threads: $(json_field s.json "['threads']")"
+    "$tessera" render --help | grep -qF -- "(0..256, 0 = all cores)" || fail "render --help does not give the range"
+    ;;
+  size_that_wraps_exits_2)
+    # 4294967297 = 2^32 + 1 used to wrap around to 1 and render 1x1.
+    for size in 4294967297x1 1x4294967297 18446744073709551617x1 16385x1 1x16385 0x5 5x0 -1x5 12x 640x480x2 '+5x5'; do
+      refused 2 "--size '$size'" "$tessera" render blend --size "$size"
+    done
+    refused 2 "the width 4294967297 is outside 1..16384" "$tessera" render blend --size 4294967297x1
+    refused 2 "the height 16385 is outside 1..16384" "$tessera" render blend --size 1x16385
+    # The same parser behind every --size, checked before the input is opened.
+    refused 2 "--size '4294967297x1'" "$tessera" crosscheck blend --backends cpu,cpu --size 4294967297x1
+    refused 2 "--size '4294967297x1'" "$tessera" visibility city_ids --size 4294967297x1
+    refused 2 "--size '4294967297x1'" "$tessera" bench crosscheck blend --size 4294967297x1
+    refused 2 "--size '4294967297x1'" "$tessera" mta render none.mta --size 4294967297x1 -o r
+    refused 2 "--size '4294967297x1'" "$tessera" texel none.mta --size 4294967297x1 -o r
+    "$tessera" render blend --size 16384x1 > s.json || fail "16384x1 refused"
+    "$tessera" render blend --size 7X3 > s.json || fail "7X3 refused"
+    [ "$(json_field s.json "['images'][0]['width']")x$(json_field s.json "['images'][0]['height']")" = 7x3 ] \
+      || fail "7X3 rendered $(json_field s.json "['images'][0]['width']")x$(json_field s.json "['images'][0]['height']")"
+    ;;
+  tau_nan_or_zero_exits_2)
+    # Every real-valued option is finite and inside its documented range; NaN compares false with
+    # everything, so a check written as "x < 0" let it through.
+    for tau in nan NaN 0 -1 inf -inf 1e999 0x1p3 '' 1.5x; do
+      refused 2 "--tau '$tau': expected a finite number > 0" "$tessera" mta build none.glb -o t.mta --tau "$tau"
+    done
+    for tau in nan 0; do
+      refused 2 "--tau '$tau': expected a finite number > 0" "$tessera" mta render none.mta -o r --tau "$tau"
+      refused 2 "--tau '$tau': expected a finite number > 0" "$tessera" texel none.mta -o r --tau "$tau"
+    done
+    refused 2 "--d-min '-1': expected a finite number >= 0" "$tessera" mta build none.glb -o t.mta --d-min -1
+    refused 2 "--d-min 'nan'" "$tessera" texel none.mta -o r --d-min nan
+    refused 2 "--d-min-divisor '0': expected a finite number > 0" "$tessera" mta build none.glb -o t.mta --d-min-divisor 0
+    refused 2 "--fov '180': expected a finite number in (0, 180)" "$tessera" mta build none.glb -o t.mta --fov 180
+    refused 2 "--tan-half-fov 'inf'" "$tessera" mta build none.glb -o t.mta --tan-half-fov inf
+    refused 2 "--critical-threshold '1.5': expected a finite number in [0, 1]" \
+      "$tessera" mta build none.glb -o t.mta --critical-threshold 1.5
+    refused 2 "--memory-limit 'inf'" "$tessera" mta build none.glb -o t.mta --memory-limit inf
+    refused 2 "--capacity 'nan': expected a finite number in (0, 1000000000]" "$tessera" mta render none.mta -o r --capacity nan
+    refused 2 "--capacity '0'" "$tessera" mta runs none.mta -o r --capacity 0
+    "$tessera" render blend -o a.png > /dev/null
+    refused 2 "--fail 'nan': expected a finite number >= 0" "$tessera" compare a.png a.png --fail nan
+    refused 2 "--warn '-1'" "$tessera" compare a.png a.png --warn -1
+    refused 2 "--failpercent '101': expected a finite number in [0, 100]" "$tessera" compare a.png a.png --failpercent 101
+    refused 2 "--warnpercent 'nan'" "$tessera" compare a.png a.png --warnpercent nan
+    "$tessera" compare a.png a.png --fail 0.5 --failpercent 100 > /dev/null || fail "valid thresholds refused"
+    "$tessera" mta build --help | grep -qF "(a finite number > 0)" || fail "mta build --help does not give --tau's range"
+    [ ! -e t.mta ] && [ ! -e r ] || fail "a refused command wrote its output"
+    ;;
+  frame_over_the_memory_budget_exits_2)
+    # The fuzz campaign's frame, encoded by hand (docs/tframe-format.md): a layered 16384 x 16384 x 2048
+    # RGBA32F render target, cleared. 16 bytes * 16384^2 * 2048 = 2^43 bytes = 8 TiB; it used to pass
+    # validation and die in bad_alloc (exit 3).
+    python3 - big.tframe <<'PY'
+import hashlib, struct, sys
+def command(opcode, payload): return struct.pack('<HI', opcode, len(payload)) + payload
+body = (command(0, struct.pack('<IBBIIIII', 1, 1, 3, 16384, 16384, 2048, 1, 0))  # CreateTexture 1: Tex2DArray RGBA32F
+        + command(18, struct.pack('<7I', 1, 0, 0, 0, 0, 0, 0xffffffff))          # SetRenderTarget color[0] = 1, layered
+        + command(19, struct.pack('<5I', 0, 0, 0, 0, 0x3f800000)))               # ClearColor 0 to (0, 0, 0, 1)
+header = b'TSFRAME\0' + struct.pack('<IIQQQ', 1, 72, 3, 0, 2) + hashlib.sha256(body).digest()
+open(sys.argv[1], 'wb').write(header + body)
+PY
+    message="command 0 (CreateTexture): frame: needs 8.0 TiB of textures, buffers and render targets, over the limit of 4.0 GiB by 8.0 TiB (raise it with --memory-budget)"
+    refused 2 "big.tframe: 1 problem in the command list" "$tessera" replay big.tframe -o big.png
+    refused 2 "$message" "$tessera" replay big.tframe -o big.png
+    refused 2 "$message" "$tessera" crosscheck big.tframe --backends cpu,cpu
+    refused 2 "big.tframe: 1 problem" "$tessera" visibility big.tframe
+    refused 2 "$message" "$tessera" bench crosscheck big.tframe
+    [ ! -e big.png ] || fail "replay wrote an image"
+    # `validate` lists it (exit 1: it found a problem) ...
+    rc=0; "$tessera" validate big.tframe > v.txt || rc=$?
+    [ "$rc" = 1 ] || fail "validate: exit status $rc"
+    grep -qF "big.tframe: $message" v.txt || fail "validate: $(cat v.txt)"
+    # ... and it is the only problem: with a budget of 8 TiB the frame is valid.
+    "$tessera" validate big.tframe --memory-budget 8TiB > v.txt || fail "8 TiB budget: $(cat v.txt)"
+    grep -qF "big.tframe: 3 commands, 0 problems" v.txt || fail "validate: $(cat v.txt)"
+    # The budget works both ways on a real frame: blend's 256x128 RGBA8 target alone is 128 KiB.
+    "$tessera" render blend --record blend.tframe > /dev/null
+    refused 2 "over the limit of 127.0 KiB by" "$tessera" replay blend.tframe --memory-budget 127KiB
+    "$tessera" replay blend.tframe --memory-budget 1MiB > /dev/null || fail "a 1 MiB budget refused blend"
+    refused 2 "--memory-budget '4GB': unknown unit 'GB'" "$tessera" replay blend.tframe --memory-budget 4GB
+    refused 2 "--memory-budget '0': a frame budget must be at least 1 byte" "$tessera" render blend --memory-budget 0
+    refused 2 "--memory-budget '16777216TiB': more than 2^64 - 1 bytes" "$tessera" validate blend.tframe --memory-budget 16777216TiB
     ;;
   *) fail "unknown case $case_name" ;;
 esac

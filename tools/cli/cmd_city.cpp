@@ -8,6 +8,7 @@
 #include "model/model.h"
 #include "base/error.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/output_directory.h"
 
 namespace tessera::cli {
 
@@ -32,6 +33,7 @@ void runCity(const CityArgs& a) {
   o.textureSize = a.textureSize;
   if (a.format != "png" && a.format != "jpg") throw Error("--format '" + a.format + "': expected png or jpg");
   o.format = a.format == "jpg" ? model::CityImageFormat::Jpg : model::CityImageFormat::Png;
+  prepareOutputDirectory(a.outDir, "-o");
   o.outDir = a.outDir;
   o.progress = !a.quiet;
   const model::CitySummary s = model::generateCity(o);

@@ -17,6 +17,8 @@
 #include "verify/crosscheck_report.h"
 #include "tools/cli/frame_job.h"
 #include "tools/cli/mta_demo.h"
+#include "tools/cli/options.h"
+#include "tools/cli/output_directory.h"
 #include "tools/scenes/scenes.h"
 
 namespace tessera::cli {
@@ -30,6 +32,7 @@ struct DemoArgs {
   bool gl = true;
   bool mta = true;
   std::string railway = "data/railway.glb";
+  ResourceLimits limits;  // the scenes' frames (the atlas tree's frames are small and keep the default)
 };
 
 std::string htmlEscape(const std::string& s) {
@@ -47,9 +50,7 @@ std::string htmlEscape(const std::string& s) {
 
 void runDemo(const DemoArgs& a) {
   namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(a.outDir, ec);
-  if (ec) throw Error(a.outDir + ": cannot create the output directory: " + ec.message());
+  prepareOutputDirectory(a.outDir, "-o");
   const int threads = a.threads > 0 ? a.threads : int(tbb::info::default_concurrency());
   nlohmann::json report;
   report["threads"] = threads;
@@ -59,7 +60,9 @@ void runDemo(const DemoArgs& a) {
   std::unique_ptr<gl::GlBackend> glb;
   if (a.gl) {
     try {
-      glb = gl::GlBackend::create({});
+      gl::GlOptions go;
+      go.limits = a.limits;
+      glb = gl::GlBackend::create(go);
       report["gl_info"] = glb->info().toJson();
     } catch (const Error& e) {
       std::fprintf(stderr, "demo: no GL cross-check: %s\n", e.what());
@@ -78,6 +81,7 @@ void runDemo(const DemoArgs& a) {
     job.imagePath = a.outDir + "/" + name + ".png";
     job.statsPath = a.outDir + "/" + name + ".json";
     job.recordPath = a.outDir + "/" + name + ".tframe";
+    job.limits = a.limits;
     nlohmann::json stats = runFrame(list, job);
     nlohmann::json entry = {{"scene", name},
                             {"rule", std::string(s.rule)},
@@ -92,6 +96,7 @@ void runDemo(const DemoArgs& a) {
       FrameJob one;
       one.name = name;
       one.threads = 1;
+      one.limits = a.limits;
       const nlohmann::json single = runFrame(list, one);
       bool agree = true;
       for (size_t k = 0; k < stats["images"].size(); ++k)
@@ -105,6 +110,7 @@ void runDemo(const DemoArgs& a) {
     if (glb) {
       verify::CrosscheckOptions co;
       co.threads = threads;
+      co.limits = a.limits;
       const verify::CrosscheckResult cr = verify::crosscheck(list, name, co, glb.get());
       const std::string dir = a.outDir + "/crosscheck/" + name;
       verify::writeCrosscheckReport(cr, dir);
@@ -170,7 +176,8 @@ void addDemoCommand(CLI::App& app) {
   auto* demo = app.add_subcommand("demo", "Render every built-in scene with its counters; write images, "
                                           "stats, report.json and index.html");
   demo->add_option("-o,--output", a->outDir, "Output directory")->capture_default_str();
-  demo->add_option("--threads", a->threads, "Worker threads (0 = all cores)")->check(CLI::Range(0, 1024));
+  addThreadsOption(demo, a->threads, "Worker threads");
+  addMemoryBudgetOption(demo, a->limits);
   demo->add_flag("!--no-thread-check", a->checkThreads, "Skip the 1-thread re-render that checks bit-identity");
   demo->add_flag("!--no-gl", a->gl, "Skip the oracle-vs-OpenGL cross-check of every scene");
   demo->add_flag("!--no-mta", a->mta, "Skip the atlas tree on railway.glb (build, render over the thesis path, runs, texel)");

@@ -9,6 +9,7 @@
 #include "mta/scene.h"
 #include "base/error.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/options.h"
 
 namespace tessera::cli {
 
@@ -43,18 +44,24 @@ void addMtaCommands(CLI::App& app) {
   auto* build = mtaCmd->add_subcommand("build", "Build an atlas tree paging file from a model (glTF, OBJ, Assimp formats); prints info JSON");
   build->add_option("scene", a->scene, "Model file")->required();
   build->add_option("-o,--output", a->out, "Output paging file (.mta)")->required();
-  build->add_option("--d-min", a->p.dMin, "Minimum distance d_min in scene units (default: scene diagonal / --d-min-divisor)");
-  build->add_option("--d-min-divisor", a->p.dMinDivisor, "k in d_min = D / k")->capture_default_str();
-  build->add_option("--tau", a->p.tau, "Pixel-per-texel ratio")->capture_default_str();
+  addRealOption(build, "--d-min", a->p.dMin,
+                "Minimum distance d_min in scene units (default 0: scene diagonal / --d-min-divisor)", kNonNegative);
+  addRealOption(build, "--d-min-divisor", a->p.dMinDivisor, "k in d_min = D / k", kPositive)->capture_default_str();
+  addRealOption(build, "--tau", a->p.tau, "Pixel-per-texel ratio", kPositive)->capture_default_str();
   build->add_option("--atlas-size", a->p.atlasSize, "Atlas size A (power of two)")->capture_default_str();
   build->add_option("--border", a->p.border, "Texture border in texels")->capture_default_str();
-  build->add_option("--fov", a->p.fovDegrees, "Horizontal field of view in degrees")->capture_default_str();
-  build->add_option("--tan-half-fov", a->p.tanHalfFov, "tan(fov/2) given directly (overrides --fov)");
-  build->add_option("--screen-width", a->p.screenWidth, "Screen width in pixels")->capture_default_str();
-  build->add_option("--critical-threshold", a->p.criticalThreshold, "Raise d_min when more than this fraction of triangles is critical")
+  addRealOption(build, "--fov", a->p.fovDegrees, "Horizontal field of view in degrees", {0.0, 180.0, true, true})
       ->capture_default_str();
-  build->add_option("--memory-limit", a->memoryLimitGiB, "Peak resident memory in GiB (0 = unchecked)")->capture_default_str();
-  build->add_option("--threads", a->p.threads, "Worker threads (0 = all; the bytes never depend on it)");
+  addRealOption(build, "--tan-half-fov", a->p.tanHalfFov, "tan(fov/2) given directly (overrides --fov)", kPositive);
+  build->add_option("--screen-width", a->p.screenWidth, "Screen width in pixels")->capture_default_str();
+  addRealOption(build, "--critical-threshold", a->p.criticalThreshold,
+                "Raise d_min when more than this fraction of triangles is critical", {0.0, 1.0, false, false})
+      ->capture_default_str();
+  // Up to 1 PiB: GiB * 2^30 stays far inside 64 bits.
+  addRealOption(build, "--memory-limit", a->memoryLimitGiB, "Peak resident memory in GiB (0 = unchecked)",
+                {0.0, 1048576.0, false, false})
+      ->capture_default_str();
+  addThreadsOption(build, a->p.threads, "Worker threads; the bytes never depend on it");
   build->add_flag("--quiet", a->quiet, "No progress on stderr");
   build->callback([a] {
     a->p.memoryLimit = uint64_t(a->memoryLimitGiB * double(1ull << 30));

@@ -8,16 +8,17 @@
 #include "tools/cli/commands.h"
 #include "tools/cli/frame_job.h"
 #include "tools/cli/mta_path_run.h"
+#include "tools/cli/output_directory.h"
 
 namespace tessera::cli {
 
 namespace fs = std::filesystem;
 
 nlohmann::json runMtaRender(const PathRunArgs& a) {
+  prepareOutputDirectory(a.out, "-o");
   mta::PagingFile file(a.input);
   const mta::CameraPath path = loadPath(a, file.meta());
   const mta::RendererOptions o = rendererOptions(a, mta::RenderMode::AtlasTree);
-  fs::create_directories(a.out);
   mta::TreeRenderer renderer(file, o);
   nlohmann::json rows = nlohmann::json::array();
   Progress progress("mta render", path.frames.size(), a.quiet);

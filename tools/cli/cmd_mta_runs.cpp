@@ -10,6 +10,7 @@
 #include "tools/cli/commands.h"
 #include "tools/cli/frame_job.h"
 #include "tools/cli/mta_path_run.h"
+#include "tools/cli/output_directory.h"
 
 namespace tessera::cli {
 
@@ -39,9 +40,9 @@ ImageError imageError(const std::vector<uint8_t>& a, const std::vector<uint8_t>&
 }  // namespace
 
 nlohmann::json runMtaRuns(const PathRunArgs& a, int tolerance) {
+  prepareOutputDirectory(a.out, "-o");
   mta::PagingFile file(a.input);
   const mta::CameraPath path = loadPath(a, file.meta());
-  fs::create_directories(a.out);
   const mta::RenderMode modes[3] = {mta::RenderMode::Original, mta::RenderMode::Dummy, mta::RenderMode::AtlasTree};
   std::vector<std::unique_ptr<mta::TreeRenderer>> r;
   for (mta::RenderMode m : modes) r.push_back(std::make_unique<mta::TreeRenderer>(file, rendererOptions(a, m)));

@@ -8,6 +8,7 @@
 #include "raster/validate.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/frame_job.h"
+#include "tools/cli/options.h"
 #include "tools/scenes/scenes.h"
 
 namespace tessera::cli {
@@ -21,8 +22,8 @@ struct RenderArgs {
 };
 
 void addJobOptions(CLI::App* c, RenderArgs& a) {
-  c->add_option("--threads", a.job.threads, "Worker threads (0 = all cores). The image bytes do not depend on it.")
-      ->check(CLI::Range(0, 1024));
+  addThreadsOption(c, a.job.threads, "Worker threads; the image bytes do not depend on it");
+  addMemoryBudgetOption(c, a.job.limits);
   c->add_option("-o,--output", a.job.imagePath,
                 "Image file for the presented target (PNG for RGBA8/R8, EXR for float and id targets); further "
                 "attachments and layers get .aN / .lN suffixes");
@@ -42,7 +43,7 @@ void addRenderCommands(CLI::App& app) {
   auto ra = std::make_shared<RenderArgs>();
   auto* render = app.add_subcommand("render", "Render a built-in scene on the oracle");
   render->add_option("scene", ra->target, "Scene name (see `tessera scenes`)")->required();
-  render->add_option("--size", ra->size, "Target size WxH (default: the scene's own size)");
+  addSizeOption(render, ra->size, "Target size WxH (default: the scene's own size)");
   render->add_option("--record", ra->job.recordPath, "Also record the frame as a .tframe file (replayable anywhere)");
   addJobOptions(render, *ra);
   render->callback([ra] {
@@ -66,16 +67,23 @@ void addRenderCommands(CLI::App& app) {
     std::printf("%s\n", runFrame(list, job).dump(2).c_str());
   });
 
-  auto vp = std::make_shared<std::string>();
-  auto* validateCmd = app.add_subcommand("validate", "Check a .tframe file and list every problem found (exit 1 if any)");
-  validateCmd->add_option("frame", *vp, "A .tframe file")->required();
+  struct ValidateArgs {
+    std::string frame;
+    ResourceLimits limits;
+  };
+  auto vp = std::make_shared<ValidateArgs>();
+  auto* validateCmd = app.add_subcommand(
+      "validate", "Check a .tframe file, its memory budget included, and list every problem found (exit 1 if any)");
+  validateCmd->add_option("frame", vp->frame, "A .tframe file")->required();
+  addMemoryBudgetOption(validateCmd, vp->limits);
   validateCmd->callback([vp] {
-    const CommandList list = readFrame(*vp);
-    const auto diags = validate(list);
+    const CommandList list = readFrame(vp->frame);
+    const auto diags = validate(list, vp->limits);
+    const char* name = vp->frame.c_str();
     for (const Diagnostic& d : diags)
-      if (d.command < list.commands().size()) std::printf("%s: command %zu (%s): %s\n", vp->c_str(), d.command,
+      if (d.command < list.commands().size()) std::printf("%s: command %zu (%s): %s\n", name, d.command,
                   std::string(commandName(list.commands()[d.command].index())).c_str(), d.message.c_str());
-    std::printf("%s: %zu commands, %zu problems\n", vp->c_str(), list.commands().size(), diags.size());
+    std::printf("%s: %zu commands, %zu problems\n", name, list.commands().size(), diags.size());
     if (!diags.empty()) throw CLI::RuntimeError(1);
   });
 }

@@ -13,6 +13,8 @@
 #include "tools/cli/commands.h"
 #include "tools/cli/frame_job.h"
 #include "tools/cli/mta_path_run.h"
+#include "tools/cli/options.h"
+#include "tools/cli/output_directory.h"
 
 namespace tessera::cli {
 
@@ -43,7 +45,7 @@ verify::RgbaCanvas histogramPng(const std::array<uint64_t, mta::kRatioBins>& his
 }  // namespace
 
 nlohmann::json runTexel(const PathRunArgs& a) {
-  fs::create_directories(a.out);
+  prepareOutputDirectory(a.out, "-o");
   std::string treePath = a.input;
   if (fs::path(a.input).extension() != ".mta") {
     // A model: build its tree with the default parameters first (kept, so later runs can reuse it).
@@ -116,9 +118,10 @@ void addTexelCommand(CLI::App& app) {
   texel->add_option("input", ta->input, "Paging file (.mta), or a model (glTF, OBJ, ...) whose tree is built first into OUT/tree.mta")
       ->required();
   addPathRunOptions(texel, *ta, true);
-  texel->add_option("--d-min", ta->buildDMin,
-                    "With a model: d_min of its atlas tree build (default: scene diagonal / 72, which for a small scene "
-                    "such as railway.glb means gigatexels; see docs/mta-build.md)");
+  addRealOption(texel, "--d-min", ta->buildDMin,
+                "With a model: d_min of its atlas tree build (default 0: scene diagonal / 72, which for a small scene "
+                "such as railway.glb means gigatexels; see docs/mta-build.md)",
+                kNonNegative);
   texel->callback([ta] { std::printf("%s\n", runTexel(*ta).dump(2).c_str()); });
 }
 

@@ -1,5 +1,7 @@
 // `tessera crosscheck | visibility | compare | bench crosscheck`: the oracle checked against GL,
 // against Embree, and images against each other.
+#include <tbb/info.h>
+
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -9,8 +11,11 @@
 #include "gl/gl_backend.h"
 #include "raster/cpu_backend.h"
 #include "raster/serialize.h"
+#include "raster/validate.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/frame_job.h"
+#include "tools/cli/options.h"
+#include "tools/cli/output_directory.h"
 #include "tools/scenes/scenes.h"
 #include "verify/compare_report.h"
 #include "verify/crosscheck.h"
@@ -38,23 +43,27 @@ struct CrossArgs {
   std::string frame, size, report, backends = "cpu,gl";
   int threads = 0;
   bool strict = false, noBisect = false;
+  ResourceLimits limits;
 };
 
 void runCrosscheck(const CrossArgs& a) {
+  if (a.backends != "cpu,cpu" && a.backends != "cpu,gl")
+    throw Error("--backends '" + a.backends + "': expected cpu,gl (oracle vs GL) or cpu,cpu (oracle self-check)");
+  if (!a.report.empty()) prepareOutputDirectory(a.report, "--report");
   const CommandList list = loadFrame(a.frame, a.size);
   verify::CrosscheckOptions o;
   o.threads = a.threads;
   o.bisect = !a.noBisect;
+  o.limits = a.limits;
   std::unique_ptr<gl::GlBackend> glb;
   if (a.backends == "cpu,cpu") {
     o.selfCheck = true;
-  } else if (a.backends == "cpu,gl") {
+  } else {
     gl::GlOptions go;
     go.strict = a.strict;
     if (a.threads > 0) go.lpThreads = a.threads;
+    go.limits = a.limits;
     glb = gl::GlBackend::create(go);
-  } else {
-    throw Error("--backends '" + a.backends + "': expected cpu,gl (oracle vs GL) or cpu,cpu (oracle self-check)");
   }
   const verify::CrosscheckResult r = verify::crosscheck(list, a.frame, o, glb.get());
   if (!a.report.empty()) verify::writeCrosscheckReport(r, a.report);
@@ -65,6 +74,7 @@ void runCrosscheck(const CrossArgs& a) {
 struct BenchArgs {
   std::string scene, size;
   int threads = 1, repeat = 5;
+  ResourceLimits limits;
 };
 
 double median(std::vector<double> v) {
@@ -74,13 +84,16 @@ double median(std::vector<double> v) {
 
 void runBench(const BenchArgs& a) {
   const CommandList list = loadFrame(a.scene, a.size);
+  // Both sides get the same explicit count; 0 means every core, for both.
+  const int threads = a.threads > 0 ? a.threads : int(tbb::info::default_concurrency());
   gl::GlOptions go;
-  go.lpThreads = a.threads;
+  go.lpThreads = threads;
+  go.limits = a.limits;
   auto glb = gl::GlBackend::create(go);
   std::vector<double> oracle, llvmpipe;
   // One warm-up run each (GL compiles its shaders on first use), then `repeat` timed runs.
   for (int i = 0; i <= a.repeat; ++i) {
-    CpuBackend b(RenderOptions{a.threads, false});
+    CpuBackend b(RenderOptions{threads, false, a.limits});
     const auto t0 = std::chrono::steady_clock::now();
     b.execute(list, a.scene);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -91,7 +104,7 @@ void runBench(const BenchArgs& a) {
   }
   const double mo = median(oracle), ml = median(llvmpipe);
   const nlohmann::json j = {{"scene", a.scene},
-                            {"threads", a.threads},
+                            {"threads", threads},
                             {"repeat", a.repeat},
                             {"oracle_ms", mo},
                             {"llvmpipe_ms", ml},
@@ -115,9 +128,9 @@ void addVerifyCommands(CLI::App& app) {
   cross->add_option("frame", ca->frame, "Scene name or .tframe file")->required();
   cross->add_option("--backends", ca->backends, "cpu,gl (default) or cpu,cpu (oracle self-check)")->capture_default_str();
   cross->add_option("--report", ca->report, "Write report.json, PNGs and index.html (with a pixel inspector) here");
-  cross->add_option("--size", ca->size, "Target size WxH for scenes");
-  cross->add_option("--threads", ca->threads, "Oracle threads, and LP_NUM_THREADS for llvmpipe when > 0")
-      ->check(CLI::Range(0, 1024));
+  addSizeOption(cross, ca->size, "Target size WxH for scenes");
+  addThreadsOption(cross, ca->threads, "Oracle threads, and LP_NUM_THREADS for llvmpipe when > 0");
+  addMemoryBudgetOption(cross, ca->limits);
   cross->add_flag("--strict", ca->strict, "Switch off llvmpipe fast paths that do not change GL semantics");
   cross->add_flag("--no-bisect", ca->noBisect, "Do not bisect to the first diverging draw on failure");
   cross->callback([ca] { runCrosscheck(*ca); });
@@ -129,12 +142,16 @@ void addVerifyCommands(CLI::App& app) {
       "object / primitive ids with the oracle's R32UI id targets. Prints JSON; exit 1 on any unexplained mismatch.");
   vis->add_option("frame", va->frame, "Scene name (e.g. city_ids) or .tframe file whose final target holds id images")
       ->required();
-  vis->add_option("--size", va->size, "Target size WxH for scenes");
-  vis->add_option("--threads", va->threads, "Threads (0 = all)")->check(CLI::Range(0, 1024));
+  addSizeOption(vis, va->size, "Target size WxH for scenes");
+  addThreadsOption(vis, va->threads, "Threads of the ray casts and the oracle render");
+  addMemoryBudgetOption(vis, va->limits);
   vis->callback([va] {
     verify::VisibilityOptions o;
     o.threads = va->threads;
-    const verify::VisibilityResult r = verify::castVisibility(loadFrame(va->frame, va->size), o);
+    o.limits = va->limits;
+    const CommandList list = loadFrame(va->frame, va->size);
+    validateOrThrow(list, va->frame, o.limits);  // names the file (castVisibility says "visibility")
+    const verify::VisibilityResult r = verify::castVisibility(list, o);
     std::printf("%s\n", verify::visibilityToJson(r, true).dump(2).c_str());
     if (r.unexplained) throw CLI::RuntimeError(1);
   });
@@ -151,13 +168,16 @@ void addVerifyCommands(CLI::App& app) {
       "Thresholds are in LSBs for 8-bit images and absolute values for float images; NaN equals only NaN.");
   compare->add_option("a", cmp->a, "Expected image")->required();
   compare->add_option("b", cmp->b, "Actual image")->required();
-  compare->add_option("--fail", cmp->o.failThreshold, "Per-channel |Δ| above this fails (default 0: exact)");
-  compare->add_option("--failpercent", cmp->o.failPercent, "Allow this % of pixels above --fail");
-  compare->add_option("--warn", cmp->warn, "Per-channel |Δ| above this warns");
-  compare->add_option("--warnpercent", cmp->o.warnPercent, "Allow this % of pixels above --warn");
+  const RealRange percent{0.0, 100.0, false, false};
+  addRealOption(compare, "--fail", cmp->o.failThreshold, "Per-channel |Δ| above this fails (default 0: exact)",
+                kNonNegative);
+  addRealOption(compare, "--failpercent", cmp->o.failPercent, "Allow this % of pixels above --fail", percent);
+  addRealOption(compare, "--warn", cmp->warn, "Per-channel |Δ| above this warns (default: --fail)", kNonNegative);
+  addRealOption(compare, "--warnpercent", cmp->o.warnPercent, "Allow this % of pixels above --warn", percent);
   compare->add_option("--report", cmp->report, "Write report.json, heatmap.png, histogram.png and index.html here");
   compare->callback([cmp] {
     if (cmp->warn >= 0) cmp->o.warnThreshold = cmp->warn;
+    if (!cmp->report.empty()) prepareOutputDirectory(cmp->report, "--report");
     const verify::CompareResult r = verify::compareImages(cmp->a, cmp->b, cmp->o);
     if (!cmp->report.empty()) verify::writeCompareReport(r, cmp->report);
     std::printf("%s\n", verify::compareToJson(r).dump(2).c_str());
@@ -171,8 +191,9 @@ void addVerifyCommands(CLI::App& app) {
       "crosscheck", "Time the same frame on the oracle and on llvmpipe with the same thread count; prints JSON with "
                     "ratio = llvmpipe / oracle (above 1: the oracle is faster)");
   bc->add_option("scene", ba->scene, "Scene name or .tframe file")->required();
-  bc->add_option("--threads", ba->threads, "Threads for both (oracle workers, LP_NUM_THREADS)")->check(CLI::Range(1, 64));
-  bc->add_option("--size", ba->size, "Target size WxH");
+  addThreadsOption(bc, ba->threads, "Threads for both (oracle workers, LP_NUM_THREADS; default 1)");
+  addSizeOption(bc, ba->size, "Target size WxH");
+  addMemoryBudgetOption(bc, ba->limits);
   bc->add_option("--repeat", ba->repeat, "Timed runs (median reported)")->check(CLI::Range(1, 1000));
   bc->callback([ba] { runBench(*ba); });
 }

@@ -16,15 +16,6 @@ namespace tessera::cli {
 
 void writeTextFile(const std::string& path, const std::string& text) { writeFileAtomically(path, text); }
 
-std::pair<int, int> parseSize(const std::string& text, const char* option) {
-  int w = 0, h = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w < 1 || h < 1 ||
-      w > 16384 || h > 16384)
-    throw Error(std::string(option) + " '" + text + "': expected WxH with 1 <= W, H <= 16384, e.g. 640x480");
-  return {w, h};
-}
-
 namespace {
 
 std::string suffixed(const std::string& path, const std::string& suffix, const std::string& ext) {
@@ -43,7 +34,7 @@ nlohmann::json runFrame(const CommandList& list, const FrameJob& job) {
   out["threads"] = job.threads;
   out["counters"] = toJson(countCommands(list));
 
-  CpuBackend backend(RenderOptions{job.threads});
+  CpuBackend backend(RenderOptions{job.threads, false, job.limits});
   const auto t0 = Clock::now();
   backend.execute(list, job.name);
   const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();

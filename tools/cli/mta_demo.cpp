@@ -12,6 +12,7 @@
 #include "mta/scene.h"
 #include "base/error.h"
 #include "tools/cli/mta_path_run.h"
+#include "tools/cli/output_directory.h"
 
 namespace tessera::cli {
 
@@ -19,7 +20,7 @@ MtaDemoResult runMtaDemo(const std::string& outDir, const std::string& railwayPa
   namespace fs = std::filesystem;
   if (!fs::exists(railwayPath)) throw Error(railwayPath + ": not found; the atlas tree demo renders railway.glb (pass --railway PATH)");
   const std::string dir = outDir + "/mta";
-  fs::create_directories(dir);
+  prepareOutputDirectory(dir, "-o");
   const std::string tree = dir + "/railway.mta";
   const auto t0 = std::chrono::steady_clock::now();
   std::fprintf(stderr, "[mta] building the atlas tree of %s (d_min 5)\n", railwayPath.c_str());

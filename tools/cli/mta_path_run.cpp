@@ -8,8 +8,16 @@
 
 #include "raster/image_io.h"
 #include "tools/cli/frame_job.h"
+#include "tools/cli/options.h"
 
 namespace tessera::cli {
+
+namespace {
+
+// --capacity in MiB: positive; the upper end keeps capacity * 2^20 far inside 64 bits.
+constexpr RealRange kCapacityMiB{0.0, 1e9, true, false};
+
+}  // namespace
 
 void addPathRunOptions(CLI::App* cmd, PathRunArgs& a, bool withMemory) {
   std::string names;
@@ -17,9 +25,11 @@ void addPathRunOptions(CLI::App* cmd, PathRunArgs& a, bool withMemory) {
   cmd->add_option("--path", a.path, "Camera path: a built-in name (" + names + ") laid out over the scene, or a path file (docs/mta-camera-path.md)")
       ->capture_default_str();
   cmd->add_option("--frames", a.frames, "Number of frames (0 = the path's own; built-in paths are resampled)");
-  cmd->add_option("--size", a.size, "Frame size WxH (minDistance is rescaled from the build's screen width)")->capture_default_str();
+  addSizeOption(cmd, a.size, "Frame size WxH (minDistance is rescaled from the build's screen width)")
+      ->capture_default_str();
   if (withMemory) {
-    cmd->add_option("--capacity", a.capacityMiB, "Memory manager capacity k in MiB of paging-file blocks (never exceeded)")
+    addRealOption(cmd, "--capacity", a.capacityMiB,
+                  "Memory manager capacity k in MiB of paging-file blocks (never exceeded)", kCapacityMiB)
         ->capture_default_str();
     cmd->add_option("--budget", a.budget,
                     "Loading per frame: bytes (e.g. 8MiB, 500KiB), blocks (4blocks) - deterministic - or a wall-clock slot "
@@ -27,11 +37,11 @@ void addPathRunOptions(CLI::App* cmd, PathRunArgs& a, bool withMemory) {
         ->capture_default_str();
     cmd->add_option("--queue", a.queue, "Request queue length")->capture_default_str();
   }
-  cmd->add_option("--tau", a.tau, "Pixel-per-texel ratio at run time (default: the build's)");
+  addRealOption(cmd, "--tau", a.tau, "Pixel-per-texel ratio at run time (default: the build's)", kPositive);
   cmd->add_flag("--thesis-distance", a.thesisDistance,
                 "Use the thesis's plain distance test; by default d is scaled by cos^2 of the frustum's corner angle so that "
                 "the tau guarantee holds at every pixel (docs/mta-render.md)");
-  cmd->add_option("--threads", a.threads, "Oracle threads (0 = all; images never depend on it)");
+  addThreadsOption(cmd, a.threads, "Oracle threads; images never depend on it");
   cmd->add_option("--save-every", a.saveEvery, "Write every N-th frame as PNG (0 = none); the last frame is always written")
       ->capture_default_str();
   cmd->add_option("-o,--output", a.out, "Output directory")->required();
@@ -73,11 +83,13 @@ mta::RendererOptions rendererOptions(const PathRunArgs& a, mta::RenderMode mode)
   const auto [w, h] = parseSize(a.size, "--size");
   o.width = uint32_t(w);
   o.height = uint32_t(h);
+  // 0 = the build's tau; any value given is checked by --tau's range (kPositive) while parsing.
+  if (!(a.tau == 0.0 || kPositive.contains(a.tau))) throw Error("--tau must be a finite number > 0");
   o.tau = a.tau;
-  if (a.tau < 0.0) throw Error("--tau must be positive");
   o.conservative = !a.thesisDistance;
   o.threads = a.threads;
-  if (!(a.capacityMiB > 0.0) || a.capacityMiB > 1e9) throw Error("--capacity must be a positive number of MiB");
+  if (!kCapacityMiB.contains(a.capacityMiB))
+    throw Error("--capacity must be a number of MiB " + kCapacityMiB.describe());
   o.residency.capacityBytes = uint64_t(a.capacityMiB * 1048576.0);
   if (a.budget == "unlimited") {
     o.residency.budget.kind = mta::LoadBudget::Kind::Blocks;
