@@ -377,9 +377,10 @@ Container parseContainer(const std::string& path, const std::vector<uint8_t>& by
 
 }  // namespace
 
-Model loadGltf(const std::string& path) {
+Model loadGltf(const std::string& path, const ResourceLimits& limits) {
   const std::vector<uint8_t> bytes = readWholeFile(path);
-  if (bytes.size() >= 8 && std::memcmp(bytes.data(), "glTF", 4) == 0 && le32(&bytes[4]) == 1) return loadAssimp(path);
+  if (bytes.size() >= 8 && std::memcmp(bytes.data(), "glTF", 4) == 0 && le32(&bytes[4]) == 1)
+    return loadAssimp(path, limits);
   if (bytes.size() >= 8 && std::memcmp(bytes.data(), "glTF", 4) == 0 && le32(&bytes[4]) != 2)
     throw Error(path + ": .glb version " + std::to_string(le32(&bytes[4])) + " is not 2");
   if (bytes.size() >= 0xffffffffull) throw Error(path + ": files of 4 GiB or more are not supported by tinygltf");
@@ -395,7 +396,7 @@ Model loadGltf(const std::string& path) {
   const nlohmann::json::json_pointer vp("/asset/version");
   const bool v1 = root.contains(vp) ? root.at(vp).is_string() && root.at(vp).get<std::string>().starts_with("1")
                                     : root.contains("meshes") && root["meshes"].is_object();
-  if (v1) return loadAssimp(path);
+  if (v1) return loadAssimp(path, limits);
   if (!root.contains(vp) || !root.at(vp).is_string()) fail(path, "/asset/version", "missing (required by glTF 2.0)");
   if (!root.at(vp).get<std::string>().starts_with("2"))
     fail(path, "/asset/version", "'" + root.at(vp).get<std::string>() + "' is not 2.x");

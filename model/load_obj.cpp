@@ -16,7 +16,7 @@
 
 namespace tessera::model::detail {
 
-Model loadObj(const std::string& path) {
+Model loadObj(const std::string& path, const ResourceLimits&) {  // limits: checked by loadModel() on the result
   tinyobj::ObjReaderConfig cfg;
   cfg.triangulate = true;
   cfg.vertex_color = false;
