@@ -38,6 +38,30 @@ std::string writeModel(const ScratchDir& dir, const std::string& images = "") {
   return path;
 }
 
+TEST(ModelLimits, TheInstanceBudgetCountsEveryNodeReached) {
+  ScratchDir dir;
+  const std::string path = writeModel(dir);
+  ResourceLimits l;
+  l.modelInstances = 2;  // the group node and its two children are 3
+  EXPECT_CONTAINS(errorOf([&] { loadModel(path, l); }),
+                  path + ": needs 3 node instances, over the limit of 2 by 1 (raise it with --model-budget-instances)");
+  l.modelInstances = 3;
+  EXPECT_EQ(loadModel(path, l).meshes.size(), 2u);
+}
+
+TEST(ModelLimits, TheTriangleAndVertexBudgetsCountEveryInstance) {
+  ScratchDir dir;
+  const std::string path = writeModel(dir);
+  ResourceLimits l;
+  l.modelTriangles = 1;  // two instances of one triangle
+  EXPECT_CONTAINS(errorOf([&] { loadModel(path, l); }),
+                  path + ": needs 2 triangles, over the limit of 1 by 1 (raise it with --model-budget-triangles)");
+  l = {};
+  l.modelVertices = 5;  // two instances of three vertices
+  EXPECT_CONTAINS(errorOf([&] { loadModel(path, l); }),
+                  path + ": needs 6 vertices, over the limit of 5 by 1 (raise it with --model-budget-vertices)");
+}
+
 TEST(ModelLimits, TheTextureBudgetCountsFourBytesPerTexelOfEveryHeader) {
   ScratchDir dir;
   testing::writeChecker(dir / "a.png", 4, 2);  // 32 bytes as RGBA8
