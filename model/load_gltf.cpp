@@ -4,13 +4,14 @@
 // data: URIs, and file-system callbacks that read buffers but refuse image files, so an external
 // image costs one stat() at load time and a .glb's images stay where they are in the file: a
 // TextureRef records (file, offset, size) and loadTexture() reads that range when asked.
-// Before tinygltf sees the file, the .glb container and the JSON are checked here, so a truncated or
-// malformed file is an Error naming the file and the JSON pointer, never a crash. Then
+// Before tinygltf sees the file, the .glb container and the JSON are checked here (gltf_checks.h), so
+// a truncated or malformed file is an Error naming the file and the JSON pointer, never a crash. Then
 // the node graph is walked without recursion and every accessor a reached mesh reads is range-checked,
 // and the instances, triangles and vertices are counted against the model budgets (gltf_graph.h),
 // before any geometry is read or allocated.
 #include <tiny_gltf.h>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -19,6 +20,7 @@
 #include <set>
 
 #include "model/gltf_accessors.h"
+#include "model/gltf_checks.h"
 #include "model/gltf_graph.h"
 #include "model/loaders.h"
 #include "raster/command_list.h"
@@ -97,7 +99,7 @@ struct UvSource {
 };
 
 double number(const std::string& path, const nlohmann::json& j, const std::string& ptr) {
-  if (!j.is_number()) fail(path, ptr, "expected a number");
+  if (!j.is_number() || !std::isfinite(j.get<double>())) fail(path, ptr, "expected a finite number");
   return j.get<double>();
 }
 
@@ -226,9 +228,15 @@ class Builder {
       if (!isTriangles(mode) || pos == prim.attributes.end()) continue;  // skipped with a note
       const uint32_t material = materialOf(prim, ptr);
       const uint64_t nv = reader_.check(pos->second, 3, ptr + "/attributes/POSITION");
+      // The texcoord set the material's texture reads must exist: without it the texture could not be
+      // mapped, and the material would silently render as its factor alone.
       const UvSource& uv = uv_[material];
       const std::string set = "TEXCOORD_" + std::to_string(uv.set);
       const auto tc = prim.attributes.find(set);
+      if (tc == prim.attributes.end() && out_.materials[material].baseColorTexture >= 0)
+        fail(path_, ptr + "/attributes",
+             "material " + std::to_string(material) + "'s base colour texture reads texCoord " +
+                 std::to_string(uv.set) + " (" + set + "), which this primitive does not have");
       if (tc != prim.attributes.end() && reader_.check(tc->second, 2, ptr + "/attributes/" + set) != nv)
         fail(path_, ptr + "/attributes/" + set, "count differs from POSITION's");
       const auto nrm = prim.attributes.find("NORMAL");
@@ -303,9 +311,6 @@ class Builder {
         const double u = double(t[i * 2]) * uv.scale[0], v = double(t[i * 2 + 1]) * uv.scale[1];
         mesh.texcoords[i] = {float(c * u + s * v + uv.offset[0]), float(-s * u + c * v + uv.offset[1])};
       }
-    } else if (out_.materials[mesh.material].baseColorTexture >= 0) {
-      out_.notes.push_back(ptr + ": textured material but no TEXCOORD_" + std::to_string(uv.set) +
-                           "; texcoords left empty");
     }
     const auto nrm = prim.attributes.find("NORMAL");
     if (nrm != prim.attributes.end() && reader_.count(nrm->second, ptr + "/attributes/NORMAL") == nv) {
@@ -410,6 +415,7 @@ Model loadGltf(const std::string& path, const ResourceLimits& limits) {
   if (!root.contains(vp) || !root.at(vp).is_string()) fail(path, "/asset/version", "missing (required by glTF 2.0)");
   if (!root.at(vp).get<std::string>().starts_with("2"))
     fail(path, "/asset/version", "'" + root.at(vp).get<std::string>() + "' is not 2.x");
+  gltf::checkDocument(path, root, limits);  // before tinygltf, which would accept or crash on what it refuses
   if (root.contains("extensionsRequired") && root["extensionsRequired"].is_array())
     for (const auto& e : root["extensionsRequired"])
       if (e.is_string() && e != "KHR_texture_transform" && e != "KHR_mesh_quantization" && e != "KHR_materials_unlit")

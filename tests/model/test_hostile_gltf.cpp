@@ -148,5 +148,110 @@ TEST(Gltf, AnAccessorWithoutABufferViewAndACountOf2To32IsRefusedByTheVertexBudge
                   dir / "zeros.gltf" + ": needs 4294967296 vertices, over the limit of 150000000");
 }
 
+TEST(Gltf, AMatrixOfThreeNumbersIsAnError) {
+  // tinygltf kept the 3 numbers and the loader used the identity instead.
+  const std::string path = kHostile + "node-matrix-of-3-numbers.gltf";
+  EXPECT_CONTAINS(errorOf([&] { loadModel(path); }), path + ": /nodes/0/matrix: expected 16 numbers, got 3 values");
+}
+
+TEST(Gltf, ATranslationRotationOrScaleOfTheWrongArityOrNotANumberIsAnError) {
+  ScratchDir dir;
+  const std::pair<const char*, const char*> cases[] = {
+      {R"("translation":[1,2])", "/nodes/0/translation: expected 3 numbers, got 2 values"},
+      {R"("rotation":[0,0,0,1,0])", "/nodes/0/rotation: expected 4 numbers, got 5 values"},
+      {R"("scale":[1,"x",1])", "/nodes/0/scale/1: expected a finite number, got \"x\""},
+      {R"("matrix":{"a":1})", "/nodes/0/matrix: expected 16 numbers, got a JSON object"},
+  };
+  for (const auto& [field, expected] : cases) {
+    testing::writeFile(dir / "trs.gltf", triangleGltf(std::string(R"([{"mesh":0,)") + field + "}]", "[0]"));
+    EXPECT_CONTAINS(errorOf([&] { loadModel(dir / "trs.gltf"); }), expected);
+  }
+}
+
+TEST(Gltf, AWrapSOf12345IsAnError) {
+  // tinygltf passes any integer through; the loader made it REPEAT.
+  const std::string path = kHostile + "sampler-wrapS-12345.gltf";
+  EXPECT_CONTAINS(errorOf([&] { loadModel(path); }),
+                  path +
+                      ": /samplers/0/wrapS: 12345 is not one of glTF 2.0's values (33071 CLAMP_TO_EDGE, 33648 "
+                      "MIRRORED_REPEAT, 10497 REPEAT)");
+}
+
+TEST(Gltf, FilterValuesOutsideGltfEnumsAreErrors) {
+  ScratchDir dir;
+  const std::pair<const char*, const char*> cases[] = {
+      {R"({"magFilter":9984})", "/samplers/0/magFilter: 9984 is not one of glTF 2.0's values"},  // a min filter
+      {R"({"minFilter":9990})", "/samplers/0/minFilter: 9990 is not one of glTF 2.0's values"},
+      {R"({"wrapT":"REPEAT"})", "/samplers/0/wrapT: \"REPEAT\" is not one of glTF 2.0's values"},
+  };
+  for (const auto& [sampler, expected] : cases) {
+    testing::writeFile(dir / "s.gltf",
+                       triangleGltf(R"([{"mesh":0}])", "[0]", std::string(R"(,"samplers":[)") + sampler + "]"));
+    EXPECT_CONTAINS(errorOf([&] { loadModel(dir / "s.gltf"); }), expected);
+  }
+  // Every value glTF 2.0 allows loads.
+  testing::writeFile(dir / "ok.gltf",
+                     triangleGltf(R"([{"mesh":0}])", "[0]",
+                                  R"(,"samplers":[{"magFilter":9728,"minFilter":9987,"wrapS":33071,)"
+                                  R"("wrapT":33648},{"magFilter":9729,"minFilter":9984,"wrapS":10497}])"));
+  EXPECT_EQ(loadModel(dir / "ok.gltf").triangleCount(), 1u);
+}
+
+TEST(Gltf, AMaterialTexCoordSetThePrimitiveLacksIsAnError) {
+  // The loader noted "texcoords left empty" and the textured material rendered as its factor alone.
+  const std::string path = kHostile + "material-texcoord-set-missing.gltf";
+  EXPECT_CONTAINS(errorOf([&] { loadModel(path); }),
+                  path +
+                      ": /meshes/0/primitives/0/attributes: material 0's base colour texture reads texCoord 1 "
+                      "(TEXCOORD_1), which this primitive does not have");
+}
+
+TEST(Gltf, AMeshIndexOf2To32DoesNotWrapToZero) {
+  // tinygltf reads indices as int: 4294967296 became mesh 0.
+  const std::string path = kHostile + "node-mesh-index-2to32.gltf";
+  EXPECT_CONTAINS(errorOf([&] { loadModel(path); }),
+                  path + ": /nodes/0/mesh: 4294967296 is not an index (an integer from 0 to 2147483647)");
+}
+
+TEST(Gltf, NegativeOrFractionalIndicesAndSizesAreErrors) {
+  ScratchDir dir;
+  const std::pair<std::string, const char*> cases[] = {
+      {triangleGltf(R"([{"mesh":0,"children":[-1]}])", "[0]"), "/nodes/0/children/0: -1 is not an index"},
+      {triangleGltf(R"([{"mesh":0.0}])", "[0]"), "/nodes/0/mesh: 0.0 is not an index"},
+      {triangleGltf(R"([{"mesh":0}])", "[2147483648]"), "/scenes/0/nodes/0: 2147483648 is not an index"},
+  };
+  for (const auto& [gltf, expected] : cases) {
+    testing::writeFile(dir / "i.gltf", gltf);
+    EXPECT_CONTAINS(errorOf([&] { loadModel(dir / "i.gltf"); }), expected);
+  }
+  std::string g = triangleGltf(R"([{"mesh":0}])", "[0]");
+  g.replace(g.find(R"("byteLength":36}])"), 17, R"("byteLength":36,"byteOffset":-4}])");
+  testing::writeFile(dir / "o.gltf", g);
+  EXPECT_CONTAINS(errorOf([&] { loadModel(dir / "o.gltf"); }),
+                  "/bufferViews/0/byteOffset: -4 is not a non-negative integer");
+}
+
+TEST(Gltf, APrimitiveModeOutside0To6IsAnError) {
+  ScratchDir dir;
+  std::string g = triangleGltf(R"([{"mesh":0}])", "[0]");
+  g.replace(g.find(R"({"attributes")"), 1, R"({"mode":7,)");
+  testing::writeFile(dir / "mode.gltf", g);
+  EXPECT_CONTAINS(errorOf([&] { loadModel(dir / "mode.gltf"); }),
+                  "/meshes/0/primitives/0/mode: 7 is not a glTF 2.0 primitive mode (0 to 6)");
+}
+
+TEST(Gltf, ExtrasNestedDeeperThanTheLimitAreRefusedBeforeTinygltfRecursesIntoThem) {
+  // 100,000 levels overflowed the stack in tinygltf's recursive conversion of `extras`.
+  const std::string path = kHostile + "extras-nested-300-deep.gltf";
+  const std::string e = errorOf([&] { loadModel(path); });
+  EXPECT_CONTAINS(e, path +
+                         ": /extras/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/...: JSON arrays and objects nest deeper than "
+                         "the limit of 256 levels");
+  ScratchDir dir;
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  testing::writeFile(dir / "deep.gltf", triangleGltf(R"([{"mesh":0}])", "[0]", R"(,"extras":)" + deep));
+  EXPECT_CONTAINS(errorOf([&] { loadModel(dir / "deep.gltf"); }), "nest deeper than the limit of 256 levels");
+}
+
 }  // namespace
 }  // namespace tessera::model
