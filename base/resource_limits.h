@@ -22,11 +22,13 @@ constexpr uint64_t kKiB = 1024, kMiB = 1024 * kKiB, kGiB = 1024 * kMiB;
 struct ResourceLimits {
   // Every texture level, buffer and render target a frame creates, summed (validate(), --memory-budget).
   uint64_t frameBytes = 4 * kGiB;
-  // A model: mesh instances after expanding the node graph, triangles over all instances, and the
-  // RGBA8 bytes of all its textures once decoded (--model-budget-* options of the commands that load
-  // models).
+  // A model: instances after expanding the node graph, triangles and vertices over all instances, and
+  // the RGBA8 bytes of all its textures once decoded (--model-budget-* options of the commands that load
+  // models). Vertices are limited apart from triangles because an instance copies every vertex of its
+  // mesh, used by a triangle or not; the default is three per triangle of the triangle limit.
   uint64_t modelInstances = 1'000'000;
   uint64_t modelTriangles = 50'000'000;
+  uint64_t modelVertices = 150'000'000;
   uint64_t modelTextureBytes = 8 * kGiB;
   // Nesting of a scene graph (glTF nodes, AC3D kids): deeper input is refused, whatever the memory.
   uint32_t graphDepth = 256;

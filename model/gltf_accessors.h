@@ -1,6 +1,8 @@
 // Internal to tessera_model: range-checked reading of glTF 2.0 accessors from a tinygltf::Model
-// (load_gltf.cpp). Every bufferView, buffer, stride, sparse index and element range is checked
-// before a byte is read; a violation is an Error naming the file and the JSON pointer.
+// (load_gltf.cpp). Every bufferView, buffer, stride, sparse index and element range is checked, in
+// 128-bit arithmetic, before anything is allocated or read, so a `count` of 2^32 or 2^62 is an Error
+// naming the file and the JSON pointer, not an allocation. check() does that alone, so a loader can
+// validate every accessor of a mesh and count its triangles before it reads any of them.
 #pragma once
 
 #include <tiny_gltf.h>
@@ -8,10 +10,12 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "base/error.h"
+#include "base/resource_limits.h"
 
 namespace tessera::model::detail::gltf {
 
@@ -115,7 +119,8 @@ class Reader {
              std::to_string(count) + " elements from byteOffset " + std::to_string(byteOffset) +
                  " overrun bufferView " + std::to_string(view) + " (" + std::to_string(bv.byteLength) + " bytes)");
     }
-    return {data.data() + bv.byteOffset + byteOffset, stride};
+    // With no element, byteOffset is never added: it may be anything, and a pointer past the buffer is UB.
+    return {data.data() + bv.byteOffset + (count ? byteOffset : 0), stride};
   }
 
   const tinygltf::Accessor& accessor(int index, const std::string& from) const {
@@ -124,16 +129,48 @@ class Reader {
     return m_.accessors[size_t(index)];
   }
 
+  // Checks that accessor `index` can be read as `comps` components per element (kIndices: as indices):
+  // its type and component type, and the byte range of its elements, sparse indices and sparse values
+  // inside their bufferViews and buffers. Reads and allocates nothing. Returns its element count.
+  static constexpr int kIndices = 0;
+  size_t check(int index, int comps, const std::string& from) const {
+    const tinygltf::Accessor& a = accessor(index, from);
+    const std::string ptr = "/accessors/" + std::to_string(index);
+    size_t elemBytes = 0;
+    if (comps == kIndices) {
+      if (a.type != TINYGLTF_TYPE_SCALAR) fail(path_, ptr + "/type", "indices must be SCALAR");
+      const int ct = a.componentType;
+      if (ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+          ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+        fail(path_, ptr + "/componentType", "indices must be an unsigned integer type");
+      elemBytes = size_t(componentBytes(ct));
+    } else {
+      if (componentCount(a.type) != comps)
+        fail(path_, ptr + "/type", "expected " + std::to_string(comps) + " components for " + from);
+      const int cb = componentBytes(a.componentType);
+      if (!cb) fail(path_, ptr + "/componentType", std::to_string(a.componentType) + " is not a component type");
+      elemBytes = size_t(cb) * size_t(comps);
+    }
+    if (a.bufferView >= 0) locate(ptr, a.bufferView, a.byteOffset, a.count, elemBytes, true);
+    if (a.sparse.isSparse) {
+      sparseIndexRange(a, ptr);
+      locate(ptr + "/sparse/values", a.sparse.values.bufferView, a.sparse.values.byteOffset, size_t(a.sparse.count),
+             elemBytes, false);
+    }
+    return a.count;
+  }
+
   // Every component of accessor `index` as float, `count * comps` values; the accessor's type must
   // have `comps` components. Sparse substitution applied.
   std::vector<float> floats(int index, int comps, const std::string& from) const {
-    const tinygltf::Accessor& a = accessor(index, from);
+    const size_t count = check(index, comps, from);  // before the allocation
+    const tinygltf::Accessor& a = m_.accessors[size_t(index)];
     const std::string ptr = "/accessors/" + std::to_string(index);
-    if (componentCount(a.type) != comps)
-      fail(path_, ptr + "/type", "expected " + std::to_string(comps) + " components for " + from);
     const int cb = componentBytes(a.componentType);
-    if (!cb) fail(path_, ptr + "/componentType", std::to_string(a.componentType) + " is not a component type");
-    std::vector<float> out(a.count * size_t(comps), 0.0f);
+    const std::optional<uint64_t> values = checkedMul(count, uint64_t(comps));
+    if (!values || *values > std::vector<float>().max_size())
+      fail(path_, ptr + "/count", std::to_string(count) + " elements do not fit in memory");
+    std::vector<float> out(size_t(*values), 0.0f);
     if (a.bufferView >= 0) {
       auto [p, stride] = locate(ptr, a.bufferView, a.byteOffset, a.count, size_t(cb) * comps, true);
       for (size_t i = 0; i < a.count; ++i)
@@ -152,14 +189,13 @@ class Reader {
   }
 
   std::vector<uint32_t> indices(int index, const std::string& from) const {
-    const tinygltf::Accessor& a = accessor(index, from);
+    const size_t count = check(index, kIndices, from);  // before the allocation
+    const tinygltf::Accessor& a = m_.accessors[size_t(index)];
     const std::string ptr = "/accessors/" + std::to_string(index);
-    if (a.type != TINYGLTF_TYPE_SCALAR) fail(path_, ptr + "/type", "indices must be SCALAR");
     const int ct = a.componentType;
-    if (ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-        ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-      fail(path_, ptr + "/componentType", "indices must be an unsigned integer type");
-    std::vector<uint32_t> out(a.count, 0);
+    if (count > std::vector<uint32_t>().max_size())
+      fail(path_, ptr + "/count", std::to_string(count) + " elements do not fit in memory");
+    std::vector<uint32_t> out(count, 0);
     if (a.bufferView >= 0) {
       auto [p, stride] = locate(ptr, a.bufferView, a.byteOffset, a.count, size_t(componentBytes(ct)), true);
       for (size_t i = 0; i < a.count; ++i) out[i] = readUint(p + i * stride, ct);
@@ -181,15 +217,20 @@ class Reader {
     if (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) return uint32_t(p[0]) | uint32_t(p[1]) << 8;
     return le32(p);
   }
-  std::vector<uint32_t> sparseIndices(const tinygltf::Accessor& a, const std::string& ptr) const {
+  // The sparse indices' component type, count and byte range; returns their first byte and stride.
+  std::pair<const uint8_t*, size_t> sparseIndexRange(const tinygltf::Accessor& a, const std::string& ptr) const {
     const int ct = a.sparse.indices.componentType;
     const int cb = componentBytes(ct);
     if (!cb || ct == TINYGLTF_COMPONENT_TYPE_FLOAT || ct == TINYGLTF_COMPONENT_TYPE_BYTE ||
         ct == TINYGLTF_COMPONENT_TYPE_SHORT)
       fail(path_, ptr + "/sparse/indices/componentType", "must be an unsigned integer type");
     if (a.sparse.count < 0) fail(path_, ptr + "/sparse/count", "negative");
-    auto [p, stride] = locate(ptr + "/sparse/indices", a.sparse.indices.bufferView, a.sparse.indices.byteOffset,
-                              size_t(a.sparse.count), size_t(cb), false);
+    return locate(ptr + "/sparse/indices", a.sparse.indices.bufferView, a.sparse.indices.byteOffset,
+                  size_t(a.sparse.count), size_t(cb), false);
+  }
+  std::vector<uint32_t> sparseIndices(const tinygltf::Accessor& a, const std::string& ptr) const {
+    const int ct = a.sparse.indices.componentType;
+    auto [p, stride] = sparseIndexRange(a, ptr);  // before the allocation
     std::vector<uint32_t> which(size_t(a.sparse.count));
     for (size_t k = 0; k < which.size(); ++k) {
       which[k] = readUint(p + k * stride, ct);

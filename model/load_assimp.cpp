@@ -208,7 +208,7 @@ class AssimpBuilder {
 
 }  // namespace
 
-Model loadAssimp(const std::string& path) {
+Model loadAssimp(const std::string& path, const ResourceLimits&) {  // limits: checked by loadModel() on the result
   Assimp::Importer importer;
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const aiScene* sc = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_SortByPType);

@@ -4,11 +4,14 @@
 // data: URIs, and file-system callbacks that read buffers but refuse image files, so an external
 // image costs one stat() at load time and a .glb's images stay where they are in the file: a
 // TextureRef records (file, offset, size) and loadTexture() reads that range when asked.
-// Before tinygltf sees the file, the .glb container and the JSON are checked here, so a truncated
-// or malformed file is an Error naming the file and the JSON pointer, never a crash; every accessor
-// is range-checked before it is read.
+// Before tinygltf sees the file, the .glb container and the JSON are checked here (gltf_checks.h), so
+// a truncated or malformed file is an Error naming the file and the JSON pointer, never a crash. Then
+// the node graph is walked without recursion and every accessor a reached mesh reads is range-checked,
+// and the instances, triangles and vertices are counted against the model budgets (gltf_graph.h),
+// before any geometry is read or allocated.
 #include <tiny_gltf.h>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +20,8 @@
 #include <set>
 
 #include "model/gltf_accessors.h"
+#include "model/gltf_checks.h"
+#include "model/gltf_graph.h"
 #include "model/loaders.h"
 #include "raster/command_list.h"
 #include "base/det_math.h"
@@ -94,7 +99,7 @@ struct UvSource {
 };
 
 double number(const std::string& path, const nlohmann::json& j, const std::string& ptr) {
-  if (!j.is_number()) fail(path, ptr, "expected a number");
+  if (!j.is_number() || !std::isfinite(j.get<double>())) fail(path, ptr, "expected a finite number");
   return j.get<double>();
 }
 
@@ -129,42 +134,21 @@ Wrap wrapOf(int mode) {
   return Wrap::Repeat;
 }
 
-glm::dmat4 nodeTransform(const tinygltf::Node& n) {
-  glm::dmat4 t(1.0);
-  if (n.matrix.size() == 16) {
-    for (int i = 0; i < 16; ++i) t[i / 4][i % 4] = n.matrix[size_t(i)];
-    return t;
-  }
-  // T * R * S, glTF 2.0 §3.5.3; the quaternion is used as stored (no trigonometry).
-  double q[4] = {0, 0, 0, 1}, s[3] = {1, 1, 1}, tr[3] = {0, 0, 0};
-  if (n.rotation.size() == 4)
-    for (int i = 0; i < 4; ++i) q[i] = n.rotation[i];
-  if (n.scale.size() == 3)
-    for (int i = 0; i < 3; ++i) s[i] = n.scale[i];
-  if (n.translation.size() == 3)
-    for (int i = 0; i < 3; ++i) tr[i] = n.translation[i];
-  const double x = q[0], y = q[1], z = q[2], w = q[3];
-  const double r[9] = {1 - 2 * (y * y + z * z), 2 * (x * y + z * w),     2 * (x * z - y * w),
-                       2 * (x * y - z * w),     1 - 2 * (x * x + z * z), 2 * (y * z + x * w),
-                       2 * (x * z + y * w),     2 * (y * z - x * w),     1 - 2 * (x * x + y * y)};  // column-major
-  for (int c = 0; c < 3; ++c)
-    for (int row = 0; row < 3; ++row) t[c][row] = r[c * 3 + row] * s[c];
-  for (int i = 0; i < 3; ++i) t[3][i] = tr[i];
-  return t;
-}
-
 class Builder {
  public:
-  Builder(const std::string& path, const tinygltf::Model& m, const nlohmann::json& root, Model& out)
-      : path_(path), m_(m), root_(root), out_(out), reader_(path, m) {}
+  Builder(const std::string& path, const tinygltf::Model& m, const nlohmann::json& root, const ResourceLimits& limits,
+          Model& out)
+      : path_(path), m_(m), root_(root), limits_(limits), out_(out), reader_(path, m) {}
 
   void run() {
     materials();
     std::vector<int> roots;
+    std::string rootsPointer = "/nodes";
     if (!m_.scenes.empty()) {
       const int s = m_.defaultScene >= 0 ? m_.defaultScene : 0;
       if (size_t(s) >= m_.scenes.size()) fail(path_, "/scene", std::to_string(s) + " is not a scene index");
       roots = m_.scenes[size_t(s)].nodes;
+      rootsPointer = "/scenes/" + std::to_string(s) + "/nodes";
     } else {  // no scene: every node nobody lists as a child
       std::vector<bool> child(m_.nodes.size());
       for (const auto& n : m_.nodes)
@@ -173,8 +157,11 @@ class Builder {
       for (size_t i = 0; i < m_.nodes.size(); ++i)
         if (!child[i]) roots.push_back(int(i));
     }
-    std::vector<bool> onPath(m_.nodes.size());
-    for (int r : roots) node(r, glm::dmat4(1.0), onPath, "/scenes/nodes");
+    // The whole graph and every accessor a reached mesh reads are checked, and the instances,
+    // triangles and vertices counted, before any geometry is read.
+    const gltf::NodeGraph graph(path_, m_, limits_, std::move(roots), rootsPointer);
+    graph.check([&](int mesh) { return meshCost(mesh); });
+    graph.forEachInstance([&](int node, const glm::dmat4& world) { instance(node, world); });
     if (defaultMaterial_ >= 0) out_.notes.push_back("primitives without a material use a default white material");
   }
 
@@ -223,30 +210,66 @@ class Builder {
     return uint32_t(defaultMaterial_);
   }
 
-  void node(int index, const glm::dmat4& parent, std::vector<bool>& onPath, const std::string& from) {
-    if (index < 0 || size_t(index) >= m_.nodes.size())
-      fail(path_, from, std::to_string(index) + " is not a node index");
-    if (onPath[size_t(index)]) fail(path_, "/nodes/" + std::to_string(index), "the node hierarchy has a cycle");
-    onPath[size_t(index)] = true;
-    const tinygltf::Node& n = m_.nodes[size_t(index)];
-    const glm::dmat4 world = compose(parent, nodeTransform(n));
-    const std::string ptr = "/nodes/" + std::to_string(index);
-    if (n.mesh >= 0) {
-      if (size_t(n.mesh) >= m_.meshes.size())
-        fail(path_, ptr + "/mesh", std::to_string(n.mesh) + " is not a mesh index");
-      const tinygltf::Mesh& gm = m_.meshes[size_t(n.mesh)];
-      for (size_t p = 0; p < gm.primitives.size(); ++p)
-        primitive(gm.primitives[p], "/meshes/" + std::to_string(n.mesh) + "/primitives/" + std::to_string(p),
-                  (gm.name.empty() ? "mesh" + std::to_string(n.mesh) : gm.name) + "/" + std::to_string(p), world);
+  static bool isTriangles(int mode) {
+    return mode == TINYGLTF_MODE_TRIANGLES || mode == TINYGLTF_MODE_TRIANGLE_STRIP ||
+           mode == TINYGLTF_MODE_TRIANGLE_FAN;
+  }
+
+  // Checks every accessor that one instance of mesh `index` will read, and what it adds to the model
+  // (NodeGraph::check). Reads no element.
+  gltf::MeshCost meshCost(int index) {
+    gltf::MeshCost cost;
+    const tinygltf::Mesh& gm = m_.meshes[size_t(index)];
+    for (size_t p = 0; p < gm.primitives.size(); ++p) {
+      const tinygltf::Primitive& prim = gm.primitives[p];
+      const std::string ptr = "/meshes/" + std::to_string(index) + "/primitives/" + std::to_string(p);
+      const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+      const auto pos = prim.attributes.find("POSITION");
+      if (!isTriangles(mode) || pos == prim.attributes.end()) continue;  // skipped with a note
+      const uint32_t material = materialOf(prim, ptr);
+      const uint64_t nv = reader_.check(pos->second, 3, ptr + "/attributes/POSITION");
+      // The texcoord set the material's texture reads must exist: without it the texture could not be
+      // mapped, and the material would silently render as its factor alone.
+      const UvSource& uv = uv_[material];
+      const std::string set = "TEXCOORD_" + std::to_string(uv.set);
+      const auto tc = prim.attributes.find(set);
+      if (tc == prim.attributes.end() && out_.materials[material].baseColorTexture >= 0)
+        fail(path_, ptr + "/attributes",
+             "material " + std::to_string(material) + "'s base colour texture reads texCoord " +
+                 std::to_string(uv.set) + " (" + set + "), which this primitive does not have");
+      if (tc != prim.attributes.end() && reader_.check(tc->second, 2, ptr + "/attributes/" + set) != nv)
+        fail(path_, ptr + "/attributes/" + set, "count differs from POSITION's");
+      const auto nrm = prim.attributes.find("NORMAL");
+      if (nrm != prim.attributes.end() && reader_.count(nrm->second, ptr + "/attributes/NORMAL") == nv)
+        reader_.check(nrm->second, 3, ptr + "/attributes/NORMAL");
+      const uint64_t n = prim.indices >= 0 ? reader_.check(prim.indices, gltf::Reader::kIndices, ptr + "/indices") : nv;
+      const uint64_t triangles = mode == TINYGLTF_MODE_TRIANGLES ? n / 3 : n >= 3 ? n - 2 : 0;
+      cost.triangles = saturatingAdd(cost.triangles, triangles);
+      cost.vertices = saturatingAdd(cost.vertices, nv);
     }
-    for (int c : n.children) node(c, world, onPath, ptr + "/children");
-    onPath[size_t(index)] = false;
+    return cost;
+  }
+
+  uint32_t materialOf(const tinygltf::Primitive& prim, const std::string& ptr) {
+    if (prim.material < 0) return defaultMaterial();
+    if (size_t(prim.material) >= m_.materials.size())
+      fail(path_, ptr + "/material", std::to_string(prim.material) + " is not a material index");
+    return uint32_t(prim.material);
+  }
+
+  void instance(int index, const glm::dmat4& world) {
+    const tinygltf::Node& n = m_.nodes[size_t(index)];
+    if (n.mesh < 0) return;
+    const tinygltf::Mesh& gm = m_.meshes[size_t(n.mesh)];  // checked by NodeGraph::check
+    for (size_t p = 0; p < gm.primitives.size(); ++p)
+      primitive(gm.primitives[p], "/meshes/" + std::to_string(n.mesh) + "/primitives/" + std::to_string(p),
+                (gm.name.empty() ? "mesh" + std::to_string(n.mesh) : gm.name) + "/" + std::to_string(p), world);
   }
 
   void primitive(const tinygltf::Primitive& prim, const std::string& ptr, const std::string& name,
                  const glm::dmat4& world) {
     const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
-    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+    if (!isTriangles(mode)) {
       ++skippedNonTriangles_;
       if (skippedNonTriangles_ == 1)
         out_.notes.push_back(ptr + ": points / lines primitives are not triangles; skipped");
@@ -259,13 +282,7 @@ class Builder {
     }
     Mesh mesh;
     mesh.name = name;
-    if (prim.material >= 0) {
-      if (size_t(prim.material) >= m_.materials.size())
-        fail(path_, ptr + "/material", std::to_string(prim.material) + " is not a material index");
-      mesh.material = uint32_t(prim.material);
-    } else {
-      mesh.material = defaultMaterial();
-    }
+    mesh.material = materialOf(prim, ptr);
     const std::vector<float> p = reader_.floats(pos->second, 3, ptr + "/attributes/POSITION");
     const size_t nv = p.size() / 3;
     const bool identity = isIdentity(world);
@@ -294,9 +311,6 @@ class Builder {
         const double u = double(t[i * 2]) * uv.scale[0], v = double(t[i * 2 + 1]) * uv.scale[1];
         mesh.texcoords[i] = {float(c * u + s * v + uv.offset[0]), float(-s * u + c * v + uv.offset[1])};
       }
-    } else if (out_.materials[mesh.material].baseColorTexture >= 0) {
-      out_.notes.push_back(ptr + ": textured material but no TEXCOORD_" + std::to_string(uv.set) +
-                           "; texcoords left empty");
     }
     const auto nrm = prim.attributes.find("NORMAL");
     if (nrm != prim.attributes.end() && reader_.count(nrm->second, ptr + "/attributes/NORMAL") == nv) {
@@ -336,6 +350,7 @@ class Builder {
   const std::string& path_;
   const tinygltf::Model& m_;
   const nlohmann::json& root_;
+  const ResourceLimits& limits_;
   Model& out_;
   Reader reader_;
   std::vector<UvSource> uv_;  // per material
@@ -377,9 +392,10 @@ Container parseContainer(const std::string& path, const std::vector<uint8_t>& by
 
 }  // namespace
 
-Model loadGltf(const std::string& path) {
+Model loadGltf(const std::string& path, const ResourceLimits& limits) {
   const std::vector<uint8_t> bytes = readWholeFile(path);
-  if (bytes.size() >= 8 && std::memcmp(bytes.data(), "glTF", 4) == 0 && le32(&bytes[4]) == 1) return loadAssimp(path);
+  if (bytes.size() >= 8 && std::memcmp(bytes.data(), "glTF", 4) == 0 && le32(&bytes[4]) == 1)
+    return loadAssimp(path, limits);
   if (bytes.size() >= 8 && std::memcmp(bytes.data(), "glTF", 4) == 0 && le32(&bytes[4]) != 2)
     throw Error(path + ": .glb version " + std::to_string(le32(&bytes[4])) + " is not 2");
   if (bytes.size() >= 0xffffffffull) throw Error(path + ": files of 4 GiB or more are not supported by tinygltf");
@@ -395,10 +411,11 @@ Model loadGltf(const std::string& path) {
   const nlohmann::json::json_pointer vp("/asset/version");
   const bool v1 = root.contains(vp) ? root.at(vp).is_string() && root.at(vp).get<std::string>().starts_with("1")
                                     : root.contains("meshes") && root["meshes"].is_object();
-  if (v1) return loadAssimp(path);
+  if (v1) return loadAssimp(path, limits);
   if (!root.contains(vp) || !root.at(vp).is_string()) fail(path, "/asset/version", "missing (required by glTF 2.0)");
   if (!root.at(vp).get<std::string>().starts_with("2"))
     fail(path, "/asset/version", "'" + root.at(vp).get<std::string>() + "' is not 2.x");
+  gltf::checkDocument(path, root, limits);  // before tinygltf, which would accept or crash on what it refuses
   if (root.contains("extensionsRequired") && root["extensionsRequired"].is_array())
     for (const auto& e : root["extensionsRequired"])
       if (e.is_string() && e != "KHR_texture_transform" && e != "KHR_mesh_quantization" && e != "KHR_materials_unlit")
@@ -473,7 +490,7 @@ Model loadGltf(const std::string& path) {
     }
     out.textures.push_back(std::move(t));
   }
-  Builder(path, gm, root, out).run();
+  Builder(path, gm, root, limits, out).run();
   return out;
 }
 

@@ -5,37 +5,74 @@
 // search path is the OBJ's directory); its -o / -s options are applied to the texcoords (the OBJ
 // analogue of KHR_texture_transform) before v is flipped to the glTF convention (v' = 1 - v).
 // Kd is the base colour factor, d < 1 (or Tr > 0) makes the material Blend, -clamp on makes it clamp.
+// The file is read once; obj_scan.h checks its indices and mtllib statements and counts its triangles
+// (against the budget) before tinyobjloader parses the same text.
 #include <tiny_obj_loader.h>
 
 #include <filesystem>
+#include <fstream>
 #include <map>
+#include <sstream>
 #include <tuple>
 
 #include "model/loaders.h"
+#include "model/obj_scan.h"
 #include "raster/command_list.h"
 
 namespace tessera::model::detail {
 
-Model loadObj(const std::string& path) {
-  tinyobj::ObjReaderConfig cfg;
-  cfg.triangulate = true;
-  cfg.vertex_color = false;
-  cfg.mtl_search_path = std::filesystem::path(path).parent_path().string();
-  if (cfg.mtl_search_path.empty()) cfg.mtl_search_path = ".";
-  tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path, cfg)) {
-    std::string e = reader.Error();
-    while (!e.empty() && e.back() == '\n') e.pop_back();
-    throw Error(path + ": " + (e.empty() ? "not a readable OBJ file" : e));
+namespace {
+
+// Hands tinyobjloader the material libraries obj_scan.h already read: all of them, in the order the
+// file names them, the first time it asks. (tinyobjloader itself would read only the first file an
+// `mtllib` statement names that it can open; OBJ means all of them.)
+class Libraries : public tinyobj::MaterialReader {
+ public:
+  explicit Libraries(const std::vector<MaterialLibrary>& libraries) : libraries_(libraries) {}
+  bool operator()(const std::string&, std::vector<tinyobj::material_t>* materials, std::map<std::string, int>* byName,
+                  std::string* warn, std::string* err) override {
+    if (read_) return true;
+    read_ = true;
+    for (const MaterialLibrary& l : libraries_) {
+      std::istringstream in(l.text);
+      tinyobj::LoadMtl(byName, materials, &in, warn, err);
+    }
+    return true;
   }
-  const tinyobj::attrib_t& attrib = reader.GetAttrib();
-  const auto& shapes = reader.GetShapes();
-  const auto& mats = reader.GetMaterials();
+
+ private:
+  const std::vector<MaterialLibrary>& libraries_;
+  bool read_ = false;
+};
+
+}  // namespace
+
+Model loadObj(const std::string& path, const ResourceLimits& limits) {
+  std::string text;
+  {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) throw Error(path + ": cannot open for reading");
+    text.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+  }
+  // Indices, mtllib statements and the triangle count are checked before tinyobjloader sees the text.
+  const ObjScan scan = scanObj(path, text);
+  requireWithinBudget(path, ModelBudget::Triangles, scan.triangles, limits);
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> mats;
+  std::string warning, error;
+  std::istringstream in(text);
+  Libraries libraries(scan.libraries);
+  if (!tinyobj::LoadObj(&attrib, &shapes, &mats, &warning, &error, &in, &libraries, /*triangulate=*/true,
+                        /*default_vcols_fallback=*/false)) {
+    while (!error.empty() && error.back() == '\n') error.pop_back();
+    throw Error(path + ": " + (error.empty() ? "not a readable OBJ file" : error));
+  }
 
   Model out;
   out.loader = "obj";
-  if (!reader.Warning().empty()) {
-    std::string w = reader.Warning();
+  if (!warning.empty()) {
+    std::string w = warning;
     while (!w.empty() && w.back() == '\n') w.pop_back();
     out.notes.push_back("tinyobjloader: " + w);
   }

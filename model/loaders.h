@@ -14,12 +14,24 @@
 
 namespace tessera::model::detail {
 
-Model loadGltf(const std::string& path);    // load_gltf.cpp; hands glTF 1.0 to loadAssimp
-Model loadObj(const std::string& path);     // load_obj.cpp
-Model loadAssimp(const std::string& path);  // load_assimp.cpp
+// Each loader checks its model against `limits` before it reads the geometry that would exceed them
+// (instances, graph depth, triangles, vertices); loadModel() checks the texture bytes for all of them.
+Model loadGltf(const std::string& path, const ResourceLimits& limits);    // load_gltf.cpp; glTF 1.0 -> loadAssimp
+Model loadObj(const std::string& path, const ResourceLimits& limits);     // load_obj.cpp
+Model loadAssimp(const std::string& path, const ResourceLimits& limits);  // load_assimp.cpp
 // load_ac3d.cpp: AC3D .ac and TORCS .acc, parsed without Assimp. Throws Error("<file>:<line>: <reason>")
 // for malformed input and overLimitMessage() when the model exceeds `limits`.
 Model loadAc3d(const std::string& path, const ResourceLimits& limits);
+
+// What a model needs of one of its budgets (docs/limits.md).
+enum class ModelBudget { Instances, Triangles, Vertices, TextureBytes };
+// Throws Error(overLimitMessage(where, ...)) naming the budget's option when `need` exceeds its limit in
+// `limits`. A saturated need (UINT64_MAX, see saturatingAdd) reads as "more than 2^64".
+void requireWithinBudget(const std::string& where, ModelBudget budget, uint64_t need, const ResourceLimits& limits);
+// a + b and a * b saturated at UINT64_MAX: counts that a hostile file can make overflow are summed this
+// way and compared against a limit, which is always far below UINT64_MAX.
+inline uint64_t saturatingAdd(uint64_t a, uint64_t b) { return checkedAdd(a, b).value_or(UINT64_MAX); }
+inline uint64_t saturatingMul(uint64_t a, uint64_t b) { return checkedMul(a, b).value_or(UINT64_MAX); }
 
 // Percent-decoding of a relative URI reference ("a%20b.png" -> "a b.png"); a "file://" prefix is dropped.
 std::string uriDecode(std::string_view uri);

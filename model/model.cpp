@@ -69,9 +69,73 @@ void requireTextureFile(const std::string& modelPath, const std::string& what, c
   throw Error(modelPath + ": " + what + ": texture file '" + resolved + "' (written as '" + uri + "') does not exist");
 }
 
+namespace {
+
+const char* budgetWhat(ModelBudget b) {
+  switch (b) {
+    case ModelBudget::Instances:
+      return "node instances";
+    case ModelBudget::Triangles:
+      return "triangles";
+    case ModelBudget::Vertices:
+      return "vertices";
+    default:
+      return "of decoded RGBA8 textures";
+  }
+}
+
+}  // namespace
+
+void requireWithinBudget(const std::string& where, ModelBudget budget, uint64_t need, const ResourceLimits& limits) {
+  // The options are wired by the commands that load models (docs/limits.md).
+  static constexpr std::string_view kOption[] = {"--model-budget-instances", "--model-budget-triangles",
+                                                 "--model-budget-vertices", "--model-budget-textures"};
+  const uint64_t limit = budget == ModelBudget::Instances   ? limits.modelInstances
+                         : budget == ModelBudget::Triangles ? limits.modelTriangles
+                         : budget == ModelBudget::Vertices  ? limits.modelVertices
+                                                            : limits.modelTextureBytes;
+  if (need <= limit) return;
+  throw Error(overLimitMessage(where, budgetWhat(budget), need == UINT64_MAX ? std::nullopt : std::optional(need),
+                               limit, kOption[int(budget)], budget == ModelBudget::TextureBytes));
+}
+
 }  // namespace detail
 
-Model loadModel(const std::string& path) {
+namespace {
+
+TextureInfo readHeader(const Model& model, size_t index);
+
+// Reads every texture's header once and checks the decoded RGBA8 bytes of all of them against the budget
+// before anything is decoded. Headers are cheap (railway.glb: 28 in a few ms, docs/model-import.md) and
+// the consumers of a model read them all anyway (mta::sceneFromModel), so they are kept in TextureRef.
+// A header that cannot be read counts zero bytes: loadTexture() will refuse that image with the reason.
+void readHeadersWithinBudget(Model& m, const ResourceLimits& limits) {
+  uint64_t total = 0, largestBytes = 0;
+  size_t largest = 0;
+  for (size_t i = 0; i < m.textures.size(); ++i) {
+    try {
+      m.textures[i].header = readHeader(m, i);
+    } catch (const Error&) {
+      continue;
+    }
+    const TextureInfo& h = m.textures[i].header;
+    const uint64_t bytes = detail::saturatingMul(uint64_t(h.width) * h.height, 4);
+    total = detail::saturatingAdd(total, bytes);
+    if (bytes > largestBytes) largestBytes = bytes, largest = i;
+  }
+  if (total <= limits.modelTextureBytes) return;
+  const TextureRef& t = m.textures[largest];
+  try {
+    detail::requireWithinBudget(m.source, detail::ModelBudget::TextureBytes, total, limits);
+  } catch (const Error& e) {
+    throw Error(std::string(e.what()) + "; the largest is texture " + std::to_string(largest) + " '" + t.name + "' (" +
+                std::to_string(t.header.width) + "x" + std::to_string(t.header.height) + ")");
+  }
+}
+
+}  // namespace
+
+Model loadModel(const std::string& path, const ResourceLimits& limits) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw Error(path + ": no such model file");
   char magic[4] = {};
@@ -85,14 +149,21 @@ Model loadModel(const std::string& path) {
   Model m;
   const bool ac3d = std::memcmp(magic, "AC3D", 4) == 0;
   if (std::memcmp(magic, "glTF", 4) == 0 || (!ac3d && (ext == ".gltf" || ext == ".glb")))
-    m = detail::loadGltf(path);
+    m = detail::loadGltf(path, limits);
   else if (ac3d || ext == ".ac" || ext == ".acc" || ext == ".ac3d")
-    m = detail::loadAc3d(path, ResourceLimits{});
+    m = detail::loadAc3d(path, limits);
   else if (ext == ".obj")
-    m = detail::loadObj(path);
+    m = detail::loadObj(path, limits);
   else
-    m = detail::loadAssimp(path);
+    m = detail::loadAssimp(path, limits);
   m.source = path;
+  // The loaders refuse geometry over the budgets before reading it; this repeats the check on the result,
+  // for any loader that counts less precisely.
+  uint64_t vertices = 0;
+  for (const Mesh& mesh : m.meshes) vertices += mesh.positions.size();
+  detail::requireWithinBudget(path, detail::ModelBudget::Triangles, m.triangleCount(), limits);
+  detail::requireWithinBudget(path, detail::ModelBudget::Vertices, vertices, limits);
+  readHeadersWithinBudget(m, limits);
   for (const Mesh& mesh : m.meshes)
     for (const glm::vec3& p : mesh.positions) m.bounds.add(p);
   return m;
@@ -216,6 +287,13 @@ Image loadTexture(const Model& model, size_t index) {
   if (spec.width <= 0 || spec.height <= 0 || nc <= 0 || spec.width > 65536 || spec.height > 65536)
     throw Error(ot.what() + ": unsupported image size " + std::to_string(spec.width) + "x" +
                 std::to_string(spec.height) + "x" + std::to_string(nc));
+  // The texture budget was checked against the header loadModel() read; an image that has grown since
+  // (a file replaced on disk) is not decoded beyond it.
+  const TextureInfo& h = model.textures[index].header;
+  if (h.width > 0 && (uint32_t(spec.width) != h.width || uint32_t(spec.height) != h.height))
+    throw Error(ot.what() + ": the image is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                ", its header said " + std::to_string(h.width) + "x" + std::to_string(h.height) +
+                " when the model was loaded");
   Image img;
   img.width = uint32_t(spec.width), img.height = uint32_t(spec.height), img.fileChannels = nc;
   const size_t texels = size_t(img.width) * img.height;
@@ -238,12 +316,22 @@ Image loadTexture(const Model& model, size_t index) {
   return img;
 }
 
-TextureInfo probeTexture(const Model& model, size_t index) {
+namespace {
+
+TextureInfo readHeader(const Model& model, size_t index) {
   requireIndex(model, index);
   if (model.textures[index].rawRGBA) return {model.textures[index].rawWidth, model.textures[index].rawHeight, 4, "raw"};
   OpenTexture ot(model, index);
   const OIIO::ImageSpec& spec = ot.in().spec();
   return {uint32_t(std::max(spec.width, 0)), uint32_t(std::max(spec.height, 0)), spec.nchannels, ot.in().format_name()};
+}
+
+}  // namespace
+
+TextureInfo probeTexture(const Model& model, size_t index) {
+  requireIndex(model, index);
+  if (model.textures[index].header.width > 0) return model.textures[index].header;
+  return readHeader(model, index);
 }
 
 }  // namespace tessera::model

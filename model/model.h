@@ -34,6 +34,7 @@
 #include <string>
 #include <vector>
 
+#include "base/resource_limits.h"
 #include "base/rgba_image.h"
 
 namespace tessera::model {
@@ -70,6 +71,13 @@ struct Mesh {
   size_t triangleCount() const { return indices.size() / 3; }
 };
 
+// What an image's header says (probeTexture()).
+struct TextureInfo {
+  uint32_t width = 0, height = 0;
+  int channels = 0;
+  std::string format;  // OIIO's format name: "png", "jpeg", "targa", "sgi", "dds", ...
+};
+
 // Where one image's encoded bytes are. Nothing is decoded until loadTexture().
 struct TextureRef {
   enum class Source : uint8_t {
@@ -86,6 +94,9 @@ struct TextureRef {
   std::shared_ptr<const std::vector<uint8_t>> bytes;  // Memory only
   bool rawRGBA = false;                               // Memory only: bytes are width x height RGBA8
   uint32_t rawWidth = 0, rawHeight = 0;
+  // The header as loadModel() read it to check the texture budget; width 0 when it could not be read
+  // (loadTexture() / probeTexture() then say why). probeTexture() returns it without reopening the image.
+  TextureInfo header;
 };
 
 struct Model {
@@ -106,19 +117,17 @@ struct Image : RgbaImage {
   bool usesAlpha = false;  // some texel has alpha < 255
 };
 
-struct TextureInfo {
-  uint32_t width = 0, height = 0;
-  int channels = 0;
-  std::string format;  // OIIO's format name: "png", "jpeg", "targa", "sgi", "dds", ...
-};
-
 // Reads a model file. The loader is chosen by content first (a .glb / glTF 1.0 / glTF 2.0 header, an
 // AC3D header), then by extension: .gltf / .glb -> tinygltf (glTF 1.0 goes to Assimp), .obj ->
 // tinyobjloader, .ac / .acc / .ac3d -> the AC3D reader, anything else -> Assimp. Image files are
-// checked to exist but not read.
+// checked to exist and their headers are read (not decoded).
+// `limits` (base/resource_limits.h, docs/limits.md) bounds the instances after expanding the node graph,
+// the nesting of the graph, the triangles and vertices over all instances (each checked before that
+// geometry is read) and the decoded RGBA8 bytes of all textures (from their headers).
 // Throws Error naming the file and what is wrong: the JSON pointer for malformed glTF
-// ("/accessors/3/bufferView: ..."), the model and the missing path for a missing texture.
-Model loadModel(const std::string& path);
+// ("/accessors/3/bufferView: ..."), file:line for OBJ / MTL, the model and the missing path for a missing
+// texture, overLimitMessage() for a model over `limits`.
+Model loadModel(const std::string& path, const ResourceLimits& limits = {});
 
 // Decodes texture `index` of `model` to RGBA8: grey is replicated, a missing alpha becomes 255,
 // 16-bit channels are rounded to 8 bits, alpha is read unassociated (as stored).
@@ -126,7 +135,8 @@ Model loadModel(const std::string& path);
 // may run concurrently on one Model: each call opens its own reader.
 Image loadTexture(const Model& model, size_t index);
 
-// The size and channel count of texture `index`, read from the image header only (OIIO's spec).
+// The size and channel count of texture `index`, read from the image header only (OIIO's spec); the
+// header loadModel() already read when it could.
 TextureInfo probeTexture(const Model& model, size_t index);
 
 }  // namespace tessera::model

@@ -1,4 +1,5 @@
-// Helpers for the model tests: a scratch directory per test, small files, an RGBA PNG writer.
+// Helpers for the model tests: a scratch directory per test, small files, an RGBA PNG writer, and
+// errorOf / EXPECT_CONTAINS for asserting the text of a tessera::Error.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -9,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "base/error.h"
 #include "raster/image_io.h"
 
 namespace tessera::model::testing {
@@ -75,4 +77,23 @@ void appendBytes(std::string& s, const std::vector<T>& v) {
   s.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
 }
 
+// Runs f, which must throw tessera::Error; returns its message.
+template <class F>
+std::string errorOf(F&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "threw a non-tessera exception: " << e.what();
+    return "";
+  }
+  ADD_FAILURE() << "did not throw";
+  return "";
+}
+
 }  // namespace tessera::model::testing
+
+#define EXPECT_CONTAINS(haystack, needle)                          \
+  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) \
+      << "expected \"" << (needle) << "\" in: " << (haystack)

@@ -17,22 +17,7 @@ using testing::ScratchDir;
 
 const std::string kRailway = TESSERA_SOURCE_DIR "/data/railway.glb";
 
-// Runs f, which must throw tessera::Error; returns its message.
-template <class F>
-std::string errorOf(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "threw a non-tessera exception: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "did not throw";
-  return "";
-}
-
-#define EXPECT_CONTAINS(haystack, needle) EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << (haystack)
+using testing::errorOf;
 
 // A one-triangle glTF; `edit` may break it.
 std::string writeTriangleGltf(const ScratchDir& dir, const std::function<void(nlohmann::json&)>& edit) {
