@@ -11,6 +11,8 @@
 #include "base/error.h"
 #include "mta/build.h"
 #include "mta/paging_file.h"
+#include "mta/runtime_geometry.h"
+#include "mta/traversal.h"
 #include "mta_file_edit.h"
 #include "mta_test_scene.h"
 
@@ -560,6 +562,32 @@ TEST(PagingFile, TooManyLeafBlockReferencesAreRefused) {
   EXPECT_NE(m.find("original-texture block references (per leaf and image piece), over the limit of 10 by "),
             std::string::npos)
       << m;
+}
+
+// ---- the consumers' own checks ---------------------------------------------------------------------------
+
+TEST(RuntimeGeometry, OverlappingLeavesAreAnErrorNotAHeapOverflow) {
+  // What the -5 children did to buildRuntimeGeometry before the validator refused them: the root became a
+  // leaf over every triangle while the real leaves still listed theirs.
+  MtaMeta m = good().meta();
+  m.trees[0].nodes[0].children = {-5, -5, -5, -5};
+  try {
+    buildRuntimeGeometry(m);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("overlaps another leaf's triangles"), std::string::npos) << e.what();
+  }
+}
+
+TEST(BlockIndex, ChildIndicesThatDoNotIncreaseAreAnErrorNotAnEndlessWalk) {
+  MtaMeta m = good().meta();
+  m.trees[1].nodes[2].children[0] = 1;
+  try {
+    buildBlockIndex(m);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("tree 1 node 2: child index 1 out of range"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
