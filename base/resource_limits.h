@@ -3,7 +3,7 @@
 // Implements: one home for every size limit that protects the process from a file or an option
 // (a frame's total texture / buffer / render-target memory, a model's instances, triangles and
 // decoded texture bytes, the nesting depth of scene graphs, worker threads, an atlas tree's per-leaf
-// block references), their documented defaults
+// block references, the frames, bytes and line length of camera path files), their documented defaults
 // (docs/limits.md), overflow-checked arithmetic for computing a need, and the one error message
 // format: what needs how much, the limit, by how much it is over, and the option that raises it.
 // Does not implement: the GL limits of a frame's contents (raster/limits.h: texture size, units,
@@ -41,6 +41,12 @@ struct ResourceLimits {
 // Worker threads accepted by every --threads option (0 = all cores). Far above any machine the
 // project runs on; far below what tbbmalloc and the per-thread scratch can survive.
 constexpr int kMaxThreads = 256;
+
+// Camera path files (mta/camera_path.h): frames of a path (file or built-in), bytes of a file, bytes of
+// one line. A frame line written by mta::writePathFile is under 200 bytes.
+constexpr uint32_t kMaxPathFrames = 1'000'000;
+constexpr uint64_t kMaxPathFileBytes = 256 * kMiB;
+constexpr uint32_t kMaxPathLineBytes = 4096;
 
 // a * b and a + b, or nullopt when the result does not fit in 64 bits.
 std::optional<uint64_t> checkedMul(uint64_t a, uint64_t b);
