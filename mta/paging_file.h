@@ -118,6 +118,7 @@ class PagingFile {
   std::vector<uint8_t> readAtlas(uint32_t tree, uint32_t node, uint32_t layer = 0) const;
 
  private:
+  void load(const ResourceLimits& limits);  // the header and the metadata, validated
   std::string path_;
   int fd_ = -1;
   uint64_t fileSize_ = 0;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <functional>
 #include <limits>
 #include <string>
@@ -562,6 +563,33 @@ TEST(PagingFile, TooManyLeafBlockReferencesAreRefused) {
   EXPECT_NE(m.find("original-texture block references (per leaf and image piece), over the limit of 10 by "),
             std::string::npos)
       << m;
+}
+
+// ---- opening ------------------------------------------------------------------------------------------------
+
+size_t openDescriptors() {
+  size_t n = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator("/proc/self/fd")) ++n;
+  return n;
+}
+
+TEST(PagingFile, ARefusedFileLeavesNoDescriptorOpen) {
+  // The constructor opened the file, then threw: no destructor ran, and every refused file kept its
+  // descriptor (a fuzz run ran out of them). Refused on the header, and refused by the validator.
+  TempFile shortFile("short.mta"), bad("bad.mta");
+  testing::writeBytes(shortFile.path, std::vector<uint8_t>(100, 0));
+  testing::rewriteMetadata(good().file.path, bad.path, [](MtaMeta& m) { m.params.tau = 0.0; });
+  const size_t before = openDescriptors();
+  for (int i = 0; i < 50; ++i) {
+    EXPECT_NE(errorOf(shortFile.path).find("truncated"), std::string::npos);
+    EXPECT_NE(errorOf(bad.path).find("parameters.tau"), std::string::npos);
+  }
+  EXPECT_EQ(openDescriptors(), before);
+}
+
+TEST(PagingFile, ADirectoryIsRefusedAsSuch) {
+  const std::string dir = std::filesystem::temp_directory_path().string();
+  EXPECT_EQ(errorOf(dir), dir + ": is a directory, not an atlas tree file");
 }
 
 // ---- the consumers' own checks ---------------------------------------------------------------------------
