@@ -2,7 +2,8 @@
 //
 // Implements: one home for every size limit that protects the process from a file or an option
 // (a frame's total texture / buffer / render-target memory, a model's instances, triangles and
-// decoded texture bytes, the nesting depth of scene graphs, worker threads), their documented defaults
+// decoded texture bytes, the nesting depth of scene graphs, worker threads, an atlas tree's per-leaf
+// block references, the frames, bytes and line length of camera path files), their documented defaults
 // (docs/limits.md), overflow-checked arithmetic for computing a need, and the one error message
 // format: what needs how much, the limit, by how much it is over, and the option that raises it.
 // Does not implement: the GL limits of a frame's contents (raster/limits.h: texture size, units,
@@ -32,11 +33,22 @@ struct ResourceLimits {
   uint64_t modelTextureBytes = 8 * kGiB;
   // Nesting of a scene graph (glTF nodes, AC3D kids): deeper input is refused, whatever the memory.
   uint32_t graphDepth = 256;
+  // An atlas tree paging file (mta/paging_file.h): the original-texture blocks indexed per leaf, one per
+  // leaf and piece of each image the leaf uses. The memory manager's block index holds them, and a
+  // frame's traversal may visit every one, so a small file whose leaves all share a many-piece image
+  // would otherwise cost memory and time quadratic in its size.
+  uint64_t mtaLeafBlockRefs = 64'000'000;
 };
 
 // Worker threads accepted by every --threads option (0 = all cores). Far above any machine the
 // project runs on; far below what tbbmalloc and the per-thread scratch can survive.
 constexpr int kMaxThreads = 256;
+
+// Camera path files (mta/camera_path.h): frames of a path (file or built-in), bytes of a file, bytes of
+// one line. A frame line written by mta::writePathFile is under 200 bytes.
+constexpr uint32_t kMaxPathFrames = 1'000'000;
+constexpr uint64_t kMaxPathFileBytes = 256 * kMiB;
+constexpr uint32_t kMaxPathLineBytes = 4096;
 
 // a * b and a + b, or nullopt when the result does not fit in 64 bits.
 std::optional<uint64_t> checkedMul(uint64_t a, uint64_t b);

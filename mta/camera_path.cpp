@@ -1,5 +1,7 @@
 #include "mta/camera_path.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -10,19 +12,18 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <glm/geometric.hpp>
-#include <sstream>
 
 #include "base/atomic_file.h"
 #include "base/det_math.h"
+#include "base/resource_limits.h"
+#include "mta/params.h"
 #include "raster/command_list.h"
 
 namespace tessera::mta {
 
 namespace {
 
-constexpr uint32_t kMaxFrames = 1000000;  // a sanity bound: 96 MB of cameras
 constexpr double kTwoPi = 2.0 * kPi;
 
 glm::dvec3 lerp(const glm::dvec3& a, const glm::dvec3& b, double s) {
@@ -211,9 +212,7 @@ std::string fmt(double v) {
 
 bool sameBits(double a, double b) { return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b); }
 
-std::string stemOf(const std::string& path) { return std::filesystem::path(path).stem().string(); }
-
-bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r'; }
 
 std::string_view trim(std::string_view s) {
   while (!s.empty() && isSpace(s.front())) s.remove_prefix(1);
@@ -233,6 +232,243 @@ std::vector<std::string_view> split(std::string_view s) {
   return t;
 }
 
+// Length of the UTF-8 sequence starting at s[i] (RFC 3629: no overlong forms, no surrogates, at most
+// U+10FFFF), or 0 if it is not one.
+size_t utf8Length(std::string_view s, size_t i) {
+  const auto at = [&](size_t k) { return k < s.size() ? uint8_t(s[k]) : uint8_t(0); };
+  const uint8_t c = at(i);
+  if (c < 0x80) return 1;
+  size_t n = 0;
+  uint8_t lo = 0x80, hi = 0xBF;  // range of the second byte
+  if (c >= 0xC2 && c <= 0xDF)
+    n = 2;
+  else if (c == 0xE0)
+    n = 3, lo = 0xA0;
+  else if ((c >= 0xE1 && c <= 0xEC) || c == 0xEE || c == 0xEF)
+    n = 3;
+  else if (c == 0xED)
+    n = 3, hi = 0x9F;
+  else if (c == 0xF0)
+    n = 4, lo = 0x90;
+  else if (c >= 0xF1 && c <= 0xF3)
+    n = 4;
+  else if (c == 0xF4)
+    n = 4, hi = 0x8F;
+  else
+    return 0;
+  if (at(i + 1) < lo || at(i + 1) > hi) return 0;
+  for (size_t k = 2; k < n; ++k)
+    if (at(i + k) < 0x80 || at(i + k) > 0xBF) return 0;
+  return n;
+}
+
+// "" if `s` is UTF-8 text without control characters other than tab and CR, else why not.
+std::string textProblem(std::string_view s) {
+  for (size_t i = 0; i < s.size();) {
+    const uint8_t c = uint8_t(s[i]);
+    if ((c < 0x20 && c != '\t' && c != '\r') || c == 0x7f) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "0x%02x", c);
+      return std::string("byte ") + hex + " at column " + std::to_string(i + 1) +
+             " is a control character (a camera path file is text)";
+    }
+    const size_t n = utf8Length(s, i);
+    if (n == 0) return "invalid UTF-8 at column " + std::to_string(i + 1);
+    i += n;
+  }
+  return "";
+}
+
+// A token as an error message quotes it: at most 40 bytes, cut at a character boundary.
+std::string quote(std::string_view t) {
+  size_t n = t.size();
+  if (n > 40) {
+    n = 40;
+    while (n > 0 && (uint8_t(t[n]) & 0xC0) == 0x80) --n;
+  }
+  std::string q = "'";  // appended piecewise: GCC 12 warns falsely (-Wrestrict) on the chained operator+
+  q.append(t.substr(0, n)).append(n < t.size() ? "...'" : "'");
+  return q;
+}
+
+// The file name without its extension, the default path name; bytes that are not UTF-8 become '?' so
+// that the name can go into JSON.
+std::string stemOf(const std::string& path) {
+  const std::string stem = std::filesystem::path(path).stem().string();
+  std::string out;
+  for (size_t i = 0; i < stem.size();) {
+    const size_t n = utf8Length(stem, i);
+    if (n == 0 || uint8_t(stem[i]) < 0x20 || stem[i] == 0x7f) {
+      out += '?';
+      ++i;
+    } else {
+      out.append(stem, i, n);
+      i += n;
+    }
+  }
+  return out;
+}
+
+// The rules every camera of a path file obeys beyond mta::validate (docs/mta-camera-path.md): with them
+// the float view-projection of every frame the renderer accepts stays finite.
+std::string rangeProblem(const Camera& c) {
+  auto big = [](const glm::dvec3& v) {
+    return !(std::abs(v.x) <= kMaxPathCoordinate && std::abs(v.y) <= kMaxPathCoordinate &&
+             std::abs(v.z) <= kMaxPathCoordinate);
+  };
+  const std::string limit = fmt(kMaxPathCoordinate);
+  if (big(c.eye)) return "eye: a coordinate's magnitude exceeds " + limit;
+  if (big(c.target)) return "target: a coordinate's magnitude exceeds " + limit;
+  if (big(c.up)) return "up: a component's magnitude exceeds " + limit;
+  if (!(c.nearPlane <= kMaxPathCoordinate)) return "near: exceeds " + limit;
+  if (!(c.farPlane <= kMaxPathCoordinate)) return "far: exceeds " + limit;
+  if (!(c.tanHalfFovX >= kMinTanHalfFov && c.tanHalfFovX <= kMaxTanHalfFov))
+    return "tan_half_fov: " + fmt(c.tanHalfFovX) + " is outside [" + fmt(kMinTanHalfFov) + ", " + fmt(kMaxTanHalfFov) +
+           "]";
+  return "";
+}
+
+// The reader's state: one call per line, then finish().
+class PathParser {
+ public:
+  explicit PathParser(const std::string& path) : path_(path) {}
+
+  void line(std::string_view line) {
+    ++lineNo_;
+    where_ = path_ + ":" + std::to_string(lineNo_);
+    if (line.size() > kMaxPathLineBytes)
+      fail("the line is " + std::to_string(line.size()) + " bytes long, over the limit of " +
+           std::to_string(kMaxPathLineBytes));
+    if (lineNo_ == 1 && line.substr(0, 3) == "\xEF\xBB\xBF") line.remove_prefix(3);  // a byte order mark is not content
+    if (const std::string why = textProblem(line); !why.empty()) fail(why);
+    if (const size_t hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+    const std::vector<std::string_view> t = split(line);
+    if (t.empty()) return;
+    if (!header_) {
+      if (t[0] == "tessera-camera-path" && t.size() == 2 && t[1] != "1")
+        fail("unsupported format version " + quote(t[1]) + " (this reader knows version 1)");
+      if (t.size() != 2 || t[0] != "tessera-camera-path" || t[1] != "1")
+        fail("expected the header 'tessera-camera-path 1' as the first non-comment line");
+      header_ = true;
+      return;
+    }
+    const std::string_view k = t[0];
+    const bool directive = k == "name" || k == "fov" || k == "tan_half_fov" || k == "near" || k == "far" || k == "up";
+    // Six fields or a leading number make a frame, so that "nan 0 0 1 0 0" says "not finite" rather than
+    // "unknown directive".
+    const bool frameLine =
+        !directive && (t.size() == 6 || k[0] == '-' || k[0] == '+' || k[0] == '.' || (k[0] >= '0' && k[0] <= '9'));
+    if (frameLine) {
+      frame(t);
+      return;
+    }
+    pendingDirective_ = lineNo_;
+    if (k == "name") {
+      if (named_) fail("'name' is given twice");
+      const std::string_view rest = trim(line.substr(size_t(k.data() + k.size() - line.data())));
+      if (rest.empty()) fail("'name' needs a value");
+      p_.name = std::string(rest);
+      named_ = true;
+      pendingDirective_ = 0;  // applies to the whole path, not to the frames that follow
+    } else if (k == "fov") {
+      expectArgs(t, 1);
+      const double deg = number(t[1]);
+      if (!(deg > 0.0 && deg < 180.0)) fail("fov " + quote(t[1]) + ": must be in (0, 180) degrees");
+      // The same formula as BuildParams::effectiveTanHalfFov, so equal degrees give equal bits.
+      const double half = deg * kPi / 360.0;
+      const double tan = detSin(half) / detCos(half);
+      if (!(tan >= kMinTanHalfFov && tan <= kMaxTanHalfFov))
+        fail("fov " + quote(t[1]) + ": tan(fov / 2) = " + fmt(tan) + " is outside [" + fmt(kMinTanHalfFov) + ", " +
+             fmt(kMaxTanHalfFov) + "]");
+      state_.tanHalfFovX = tan;
+    } else if (k == "tan_half_fov") {
+      expectArgs(t, 1);
+      state_.tanHalfFovX = number(t[1]);
+      if (!(state_.tanHalfFovX >= kMinTanHalfFov && state_.tanHalfFovX <= kMaxTanHalfFov))
+        fail("tan_half_fov " + quote(t[1]) + ": must be in [" + fmt(kMinTanHalfFov) + ", " + fmt(kMaxTanHalfFov) + "]");
+    } else if (k == "near") {
+      expectArgs(t, 1);
+      state_.nearPlane = number(t[1]);
+      if (!(state_.nearPlane > 0.0)) fail("near " + quote(t[1]) + ": must be > 0");
+    } else if (k == "far") {
+      expectArgs(t, 1);
+      state_.farPlane = number(t[1]);
+      if (!(state_.farPlane > 0.0)) fail("far " + quote(t[1]) + ": must be > 0");
+    } else if (k == "up") {
+      expectArgs(t, 3);
+      for (int i = 0; i < 3; ++i) state_.up[i] = number(t[1 + size_t(i)]);
+      if (state_.up[0] == 0.0 && state_.up[1] == 0.0 && state_.up[2] == 0.0) fail("up: must not be the zero vector");
+    } else {
+      fail("unknown directive " + quote(k) + " (known: name, fov, tan_half_fov, near, far, up)");
+    }
+  }
+
+  // The line after the last complete one is longer than the limit (`bytes` read of it so far).
+  [[noreturn]] void tooLong(uint64_t bytes) const {
+    throw Error(path_ + ":" + std::to_string(lineNo_ + 1) + ": the line is longer than " +
+                std::to_string(kMaxPathLineBytes) + " bytes (" + std::to_string(bytes) + " read without a line end)");
+  }
+  [[noreturn]] void tooLarge(uint64_t bytes) const {
+    throw Error(path_ + ":" + std::to_string(lineNo_ + 1) + ": the file is larger than " +
+                formatBytes(kMaxPathFileBytes) + " (" + std::to_string(bytes) +
+                " bytes read), the limit for a camera path file");
+  }
+  CameraPath finish() {
+    if (!header_)
+      throw Error(path_ + ":" + std::to_string(std::max<size_t>(lineNo_, 1)) +
+                  ": expected the header 'tessera-camera-path 1'; the file has no content");
+    if (pendingDirective_)
+      throw Error(path_ + ":" + std::to_string(pendingDirective_) + ": directive has no effect: no frame follows it");
+    if (p_.frames.empty()) throw Error(path_ + ":" + std::to_string(lineNo_) + ": the file has no frames");
+    if (!named_) p_.name = stemOf(path_);
+    return std::move(p_);
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& why) const { throw Error(where_ + ": " + why); }
+
+  double number(std::string_view field) const {
+    // from_chars takes no leading '+', people write one.
+    const std::string_view tok =
+        field.size() > 1 && field[0] == '+' && field[1] != '-' && field[1] != '+' ? field.substr(1) : field;
+    double v = 0.0;
+    const auto r = std::from_chars(tok.data(), tok.data() + tok.size(), v);
+    if (r.ec == std::errc::result_out_of_range) fail(quote(tok) + " is out of the range of a double");
+    if (r.ec != std::errc() || r.ptr != tok.data() + tok.size()) fail(quote(tok) + " is not a number");
+    if (!std::isfinite(v)) fail(quote(tok) + " is not finite");
+    if (!(std::abs(v) <= kMaxPathCoordinate))
+      fail(quote(tok) + " exceeds " + fmt(kMaxPathCoordinate) +
+           " in magnitude, the largest number a camera path accepts");
+    return v;
+  }
+
+  void expectArgs(const std::vector<std::string_view>& t, size_t n) const {
+    if (t.size() == n + 1) return;
+    std::string why = "'";  // appended piecewise: GCC 12 warns falsely (-Wrestrict) on the chained operator+
+    why.append(t[0]).append("' takes ").append(std::to_string(n)).append(n == 1 ? " number" : " numbers");
+    why.append(", got ").append(std::to_string(t.size() - 1));
+    fail(why);
+  }
+
+  void frame(const std::vector<std::string_view>& t) {
+    if (t.size() != 6) fail("a frame needs 6 numbers (eye x y z, target x y z), got " + std::to_string(t.size()));
+    Camera c = state_;
+    for (size_t i = 0; i < 3; ++i) c.eye[int(i)] = number(t[i]), c.target[int(i)] = number(t[3 + i]);
+    validate(c, where_);
+    if (p_.frames.size() >= kMaxPathFrames)
+      fail("more than " + std::to_string(kMaxPathFrames) + " frames, the limit for a camera path");
+    p_.frames.push_back(c);
+    pendingDirective_ = 0;
+  }
+
+  const std::string& path_;
+  std::string where_;
+  size_t lineNo_ = 0, pendingDirective_ = 0;  // pendingDirective_: line of a directive no frame has used yet
+  bool header_ = false, named_ = false;
+  Camera state_;  // the directives' current values, applied to each frame
+  CameraPath p_;
+};
+
 }  // namespace
 
 std::vector<std::string> builtinPathNames() { return {"thesis", "orbit", "street"}; }
@@ -244,9 +480,9 @@ CameraPath builtinPath(std::string_view name, const std::array<float, 6>& sceneB
     for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
     throw Error("camera path '" + std::string(name) + "': not a built-in path (known: " + known + ")");
   }
-  if (frames > kMaxFrames)
+  if (frames > kMaxPathFrames)
     throw Error("camera path '" + std::string(name) + "': " + std::to_string(frames) + " frames requested, at most " +
-                std::to_string(kMaxFrames));
+                std::to_string(kMaxPathFrames));
   const Layout l = layoutOf(name, sceneBounds);
   if (name == "thesis") return thesisPath(l, frames ? frames : 300);
   if (name == "orbit") return orbitPath(l, frames ? frames : 120);
@@ -254,130 +490,59 @@ CameraPath builtinPath(std::string_view name, const std::array<float, 6>& sceneB
 }
 
 CameraPath readPathFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open: " + std::strerror(errno));
-  std::stringstream ss;
-  ss << in.rdbuf();
-  std::string text = ss.str();
-  if (in.bad()) throw Error(path + ": read failed");
-  if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);  // a UTF-8 byte order mark is not content
-
-  CameraPath p;
-  bool header = false, named = false;
-  size_t lineNo = 0, pendingDirective = 0;  // line of a directive that no frame has used yet
-  Camera state;                             // the directives' current values, applied to each frame
-  std::string where;
-  auto fail = [&](const std::string& why) { throw Error(where + ": " + why); };
-  auto number = [&](std::string_view field) {
-    // from_chars takes no leading '+', people write one.
-    const std::string_view tok =
-        field.size() > 1 && field[0] == '+' && field[1] != '-' && field[1] != '+' ? field.substr(1) : field;
-    double v = 0.0;
-    const auto r = std::from_chars(tok.data(), tok.data() + tok.size(), v);
-    if (r.ec == std::errc::result_out_of_range) fail("'" + std::string(tok) + "' is out of the range of a double");
-    if (r.ec != std::errc() || r.ptr != tok.data() + tok.size()) fail("'" + std::string(tok) + "' is not a number");
-    if (!std::isfinite(v)) fail("'" + std::string(tok) + "' is not finite");
-    return v;
-  };
-  auto expectArgs = [&](const std::vector<std::string_view>& t, size_t n) {
-    if (t.size() == n + 1) return;
-    std::string why = "'";  // appended piecewise: GCC 12 warns falsely (-Wrestrict) on the chained operator+
-    why.append(t[0]).append("' takes ").append(std::to_string(n)).append(n == 1 ? " number" : " numbers");
-    why.append(", got ").append(std::to_string(t.size() - 1));
-    fail(why);
-  };
-
-  size_t pos = 0;
-  while (pos < text.size()) {
-    size_t end = text.find('\n', pos);
-    if (end == std::string::npos) end = text.size();
-    std::string_view line(text.data() + pos, end - pos);
-    pos = end + 1;
-    ++lineNo;
-    where = path + ":" + std::to_string(lineNo);
-    if (const size_t hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
-    const std::vector<std::string_view> t = split(line);
-    if (t.empty()) continue;
-
-    if (!header) {
-      if (t[0] == "tessera-camera-path" && t.size() == 2 && t[1] != "1")
-        fail("unsupported format version '" + std::string(t[1]) + "' (this reader knows version 1)");
-      if (t.size() != 2 || t[0] != "tessera-camera-path" || t[1] != "1")
-        fail("expected the header 'tessera-camera-path 1' as the first non-comment line");
-      header = true;
-      continue;
-    }
-
-    const std::string_view k = t[0];
-    const bool directive = k == "name" || k == "fov" || k == "tan_half_fov" || k == "near" || k == "far" || k == "up";
-    // Six fields or a leading number make a frame, so that "nan 0 0 1 0 0" says "not finite" rather than
-    // "unknown directive".
-    const bool frameLine =
-        !directive && (t.size() == 6 || k[0] == '-' || k[0] == '+' || k[0] == '.' || (k[0] >= '0' && k[0] <= '9'));
-    if (frameLine) {
-      if (t.size() != 6) fail("a frame needs 6 numbers (eye x y z, target x y z), got " + std::to_string(t.size()));
-      Camera c = state;
-      for (int i = 0; i < 3; ++i) c.eye[i] = number(t[i]), c.target[i] = number(t[3 + i]);
-      validate(c, where);
-      if (p.frames.size() >= kMaxFrames) fail("more than " + std::to_string(kMaxFrames) + " frames");
-      p.frames.push_back(c);
-      pendingDirective = 0;
-      continue;
-    }
-    pendingDirective = lineNo;
-    if (k == "name") {
-      if (named) fail("'name' is given twice");
-      const std::string_view rest = trim(line.substr(size_t(k.data() + k.size() - line.data())));
-      if (rest.empty()) fail("'name' needs a value");
-      p.name = std::string(rest);
-      named = true;
-      pendingDirective = 0;  // applies to the whole path, not to the frames that follow
-    } else if (k == "fov") {
-      expectArgs(t, 1);
-      const double deg = number(t[1]);
-      if (!(deg > 0.0 && deg < 180.0)) fail("fov " + std::string(t[1]) + ": must be in (0, 180) degrees");
-      // The same formula as BuildParams::effectiveTanHalfFov, so equal degrees give equal bits.
-      const double half = deg * kPi / 360.0;
-      state.tanHalfFovX = detSin(half) / detCos(half);
-    } else if (k == "tan_half_fov") {
-      expectArgs(t, 1);
-      state.tanHalfFovX = number(t[1]);
-      if (!(state.tanHalfFovX > 0.0)) fail("tan_half_fov " + std::string(t[1]) + ": must be > 0");
-    } else if (k == "near") {
-      expectArgs(t, 1);
-      state.nearPlane = number(t[1]);
-      if (!(state.nearPlane > 0.0)) fail("near " + std::string(t[1]) + ": must be > 0");
-    } else if (k == "far") {
-      expectArgs(t, 1);
-      state.farPlane = number(t[1]);
-      if (!(state.farPlane > 0.0)) fail("far " + std::string(t[1]) + ": must be > 0");
-    } else if (k == "up") {
-      expectArgs(t, 3);
-      for (int i = 0; i < 3; ++i) state.up[i] = number(t[1 + i]);
-      if (state.up[0] == 0.0 && state.up[1] == 0.0 && state.up[2] == 0.0) fail("up: must not be the zero vector");
-    } else {
-      fail("unknown directive '" + std::string(k) + "' (known: name, fov, tan_half_fov, near, far, up)");
-    }
+  // Read with POSIX calls in chunks, line by line: a FIFO or a device (/dev/zero) is read only as far as
+  // the limits allow, and the file is never held whole in memory.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw Error(path + ": cannot open: " + std::strerror(errno));
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat st {};
+  if (::fstat(fd, &st) == 0 && S_ISDIR(st.st_mode)) throw Error(path + ": is a directory, not a camera path file");
+  PathParser parser(path);
+  std::string pending;
+  std::vector<char> chunk(64 * 1024);
+  uint64_t total = 0;
+  for (;;) {
+    const ssize_t r = ::read(fd, chunk.data(), chunk.size());
+    if (r < 0 && errno == EINTR) continue;
+    if (r < 0) throw Error(path + ": read failed: " + std::strerror(errno));
+    if (r == 0) break;
+    total += uint64_t(r);
+    if (total > kMaxPathFileBytes) parser.tooLarge(total);
+    pending.append(chunk.data(), size_t(r));
+    size_t start = 0;
+    for (size_t nl; (nl = pending.find('\n', start)) != std::string::npos; start = nl + 1)
+      parser.line(std::string_view(pending).substr(start, nl - start));
+    pending.erase(0, start);
+    if (pending.size() > kMaxPathLineBytes) parser.tooLong(pending.size());
   }
-  if (!header)
-    throw Error(path + ":" + std::to_string(std::max<size_t>(lineNo, 1)) +
-                ": expected the header 'tessera-camera-path 1'; the file has no content");
-  if (pendingDirective)
-    throw Error(path + ":" + std::to_string(pendingDirective) + ": directive has no effect: no frame follows it");
-  if (p.frames.empty()) throw Error(path + ":" + std::to_string(lineNo) + ": the file has no frames");
-  if (!named) p.name = stemOf(path);
-  return p;
+  if (!pending.empty()) parser.line(pending);
+  return parser.finish();
 }
 
 void writePathFile(const CameraPath& p, const std::string& path) {
+  // Everything the reader refuses is refused here, so that a written file always reads back.
   for (unsigned char ch : p.name)
     if (ch < 0x20 || ch == 0x7f || ch == '#')
       throw Error(path + ": path name '" + p.name +
                   "' contains a control character or '#', which the file cannot hold");
   if (trim(p.name).size() != p.name.size())
     throw Error(path + ": path name '" + p.name + "' has surrounding spaces, which the file cannot hold");
+  if (!textProblem(p.name).empty()) throw Error(path + ": path name is not UTF-8 text, which the file cannot hold");
+  if (5 + p.name.size() > kMaxPathLineBytes)
+    throw Error(path + ": path name is " + std::to_string(p.name.size()) + " bytes long; its line would exceed " +
+                std::to_string(kMaxPathLineBytes) + " bytes");
   if (p.frames.empty()) throw Error(path + ": the camera path has no frames");
-  for (size_t i = 0; i < p.frames.size(); ++i) validate(p.frames[i], path + ": frame " + std::to_string(i));
+  if (p.frames.size() > kMaxPathFrames)
+    throw Error(path + ": " + std::to_string(p.frames.size()) + " frames, more than the " +
+                std::to_string(kMaxPathFrames) + " a camera path file may hold");
+  for (size_t i = 0; i < p.frames.size(); ++i) {
+    const std::string where = path + ": frame " + std::to_string(i);
+    validate(p.frames[i], where);
+    if (const std::string why = rangeProblem(p.frames[i]); !why.empty()) throw Error(where + ": camera " + why);
+  }
 
   std::string out = "tessera-camera-path 1\n# docs/mta-camera-path.md; one frame per line: eye x y z, target x y z\n";
   if (!p.name.empty()) out += "name " + p.name + "\n";
@@ -392,7 +557,9 @@ void writePathFile(const CameraPath& p, const std::string& path) {
     out += fmt(c.eye[0]) + " " + fmt(c.eye[1]) + " " + fmt(c.eye[2]) + "  " + fmt(c.target[0]) + " " +
            fmt(c.target[1]) + " " + fmt(c.target[2]) + "\n";
   }
-
+  if (out.size() > kMaxPathFileBytes)
+    throw Error(path + ": the path would take " + formatBytes(out.size()) + ", more than the " +
+                formatBytes(kMaxPathFileBytes) + " a camera path file may hold");
   writeFileAtomically(path, out);
 }
 

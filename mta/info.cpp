@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "base/error.h"
+
 namespace tessera::mta {
 
 nlohmann::json describe(const PagingFile& f, bool verifyBlocks) {
@@ -38,7 +40,9 @@ nlohmann::json describe(const PagingFile& f, bool verifyBlocks) {
     std::vector<uint64_t> perLevel;
     uint64_t leaves = 0;
     double covSum = 0.0, covMin = 1.0;
+    if (t.nodes.empty()) throw Error("mta info: internal error: a tree without nodes");  // the validator refuses it
     for (const Node& n : t.nodes) {
+      if (n.level > kMaxNodeLevel) throw Error("mta info: internal error: a node deeper than the format allows");
       if (perLevel.size() <= n.level) perLevel.resize(n.level + 1, 0);
       ++perLevel[n.level];
       if (n.leaf()) ++leaves, covSum += n.coverage, covMin = std::min(covMin, double(n.coverage));
@@ -55,7 +59,11 @@ nlohmann::json describe(const PagingFile& f, bool verifyBlocks) {
   }
   j["trees"] = trees;
   uint64_t n[3] = {}, bytes[3] = {};
-  for (const BlockInfo& b : m.blocks) ++n[int(b.kind)], bytes[int(b.kind)] += b.size;
+  for (const BlockInfo& b : m.blocks) {
+    if (b.kind != BlockKind::Atlas && b.kind != BlockKind::Original)
+      throw Error("mta info: internal error: a block of unknown kind");
+    ++n[int(b.kind)], bytes[int(b.kind)] += b.size;
+  }
   j["blocks"] = {{"atlas", {{"count", n[1]}, {"bytes", bytes[1]}}}, {"original", {{"count", n[2]}, {"bytes", bytes[2]}}}};
   if (verifyBlocks) {
     for (uint32_t i = 0; i < m.blocks.size(); ++i) f.readBlock(i);

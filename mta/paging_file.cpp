@@ -10,6 +10,7 @@
 #include <type_traits>
 
 #include "base/sha256.h"
+#include "mta/paging_file_validation.h"
 #include "raster/command_list.h"
 
 namespace tessera::mta {
@@ -98,7 +99,9 @@ struct PieceDisk {
 };
 #pragma pack(pop)
 
-std::vector<uint8_t> serialize(const MtaMeta& m) {
+}  // namespace
+
+std::vector<uint8_t> encodeMetadata(const MtaMeta& m) {
   Out o;
   const BuildParams& p = m.params;
   o.put<uint32_t>(m.layerCount), o.put<uint32_t>(p.atlasSize), o.put<uint32_t>(p.border), o.put<uint32_t>(p.screenWidth);
@@ -148,6 +151,8 @@ std::vector<uint8_t> serialize(const MtaMeta& m) {
   return std::move(o.b);
 }
 
+namespace {
+
 MtaMeta deserialize(const std::vector<uint8_t>& bytes, const std::string& path) {
   In in{bytes, 0, path};
   MtaMeta m;
@@ -157,12 +162,9 @@ MtaMeta deserialize(const std::vector<uint8_t>& bytes, const std::string& path) 
   p.dMin = in.get<double>("d_min"), p.dMinDivisor = in.get<double>("d_min_divisor"), p.tau = in.get<double>("tau");
   p.fovDegrees = in.get<double>("fov"), p.tanHalfFov = in.get<double>("tan_half_fov");
   p.criticalThreshold = in.get<double>("critical_threshold");
-  if (m.layerCount < 1 || m.layerCount > 16) in.fail("layer_count", std::to_string(m.layerCount) + " outside [1, 16]");
-  try {
-    p.validate();
-  } catch (const Error& e) {
-    in.fail("parameters", e.what());
-  }
+  // Bounds the per-layer arrays below; the parameters' ranges are checked with the rest (validateMetadata).
+  if (m.layerCount < 1 || m.layerCount > kMaxLayers)
+    in.fail("layer_count", std::to_string(m.layerCount) + " outside [1, " + std::to_string(kMaxLayers) + "]");
   BuildStats& s = m.stats;
   s.trianglesIn = in.get<uint64_t>("stats"), s.trianglesOut = in.get<uint64_t>("stats");
   s.criticalAtRequested = in.get<uint64_t>("stats"), s.criticalAfterRaise = in.get<uint64_t>("stats");
@@ -174,7 +176,9 @@ MtaMeta deserialize(const std::vector<uint8_t>& bytes, const std::string& path) 
     SceneTexture t;
     t.image = in.get<uint32_t>("texture.image");
     const uint8_t ws = in.get<uint8_t>("texture.wrap"), wt = in.get<uint8_t>("texture.wrap");
-    if (ws > 2 || wt > 2) in.fail("textures/" + std::to_string(i), "invalid wrap mode");
+    if (ws > 2 || wt > 2)
+      in.fail("textures[" + std::to_string(i) + "].wrap",
+              "mode " + std::to_string(ws > 2 ? ws : wt) + " is not 0, 1 or 2");
     t.wrapS = model::Wrap(ws), t.wrapT = model::Wrap(wt);
     m.textures.push_back(t);
   }
@@ -190,6 +194,9 @@ MtaMeta deserialize(const std::vector<uint8_t>& bytes, const std::string& path) 
   }
   for (const PieceDisk& d : in.arr<PieceDisk>("pieces")) m.pieces.push_back(PieceRecord{d.image, d.block, d.row0, d.rows, d.offset});
   for (const BlockDisk& d : in.arr<BlockDisk>("blocks")) {
+    if (d.pad != 0)
+      throw Error(path + ": blocks[" + std::to_string(m.blocks.size()) + "].pad: " + std::to_string(d.pad) +
+                  " (must be 0)");
     BlockInfo b{d.offset, d.size, BlockKind(d.kind), d.tree, d.layer, d.node, {}};
     std::memcpy(b.sha256.data(), d.sha, 32);
     m.blocks.push_back(b);
@@ -227,88 +234,6 @@ MtaMeta deserialize(const std::vector<uint8_t>& bytes, const std::string& path) 
   return m;
 }
 
-// Cross-reference checks: everything a consumer indexes with is in range and the ranges nest.
-void validateMeta(const MtaMeta& m, const std::string& path, uint64_t metaOffset) {
-  auto fail = [&](const std::string& field, const std::string& why) { throw Error(path + ": " + field + ": " + why); };
-  const uint64_t atlasBytes = uint64_t(m.params.atlasSize) * m.params.atlasSize;
-  for (size_t i = 0; i < m.blocks.size(); ++i) {
-    const BlockInfo& b = m.blocks[i];
-    if (b.offset < kHeaderSize || b.offset > metaOffset || b.size > metaOffset - b.offset)
-      fail("blocks/" + std::to_string(i), "range [" + std::to_string(b.offset) + ", +" + std::to_string(b.size) + ") outside the block area");
-    if (b.kind != BlockKind::Atlas && b.kind != BlockKind::Original) fail("blocks/" + std::to_string(i), "unknown kind");
-  }
-  for (size_t i = 0; i < m.textures.size(); ++i)
-    if (m.textures[i].image >= m.images.size()) fail("textures/" + std::to_string(i), "image index out of range");
-  for (size_t i = 0; i < m.images.size(); ++i) {
-    const ImageRecord& r = m.images[i];
-    const std::string f = "images/" + std::to_string(i);
-    if (r.channels != 3 && r.channels != 4) fail(f, "channels must be 3 or 4");
-    if (r.width == 0 || r.height == 0 || r.width > 65536 || r.height > 65536) fail(f, "size out of range");
-    if (uint64_t(r.firstPiece) + r.pieceCount > m.pieces.size()) fail(f, "pieces out of range");
-    uint32_t row = 0;
-    for (uint32_t k = 0; k < r.pieceCount; ++k) {
-      const PieceRecord& pc = m.pieces[r.firstPiece + k];
-      const std::string pf = "pieces/" + std::to_string(r.firstPiece + k);
-      if (pc.image != i || pc.row0 != row || pc.rows == 0) fail(pf, "does not continue image " + std::to_string(i));
-      if (pc.block >= m.blocks.size() || m.blocks[pc.block].kind != BlockKind::Original) fail(pf, "not in an original-texture block");
-      const uint64_t bytes = uint64_t(pc.rows) * r.width * r.channels;
-      if (pc.offset > m.blocks[pc.block].size || bytes > m.blocks[pc.block].size - pc.offset) fail(pf, "exceeds its block");
-      row += pc.rows;
-    }
-    if (r.pieceCount != 0 && row != r.height) fail(f, "pieces cover " + std::to_string(row) + " of " + std::to_string(r.height) + " rows");
-  }
-  for (size_t ti = 0; ti < m.trees.size(); ++ti) {
-    const Tree& t = m.trees[ti];
-    const std::string tf = "trees/" + std::to_string(ti);
-    const uint64_t tris = t.geometry.triangleCount();
-    if (t.alpha > 1) fail(tf, "alpha must be 0 or 1");
-    if (t.nodes.empty()) fail(tf, "no nodes");
-    for (const glm::vec3& v : t.geometry.positions)
-      if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) fail(tf + "/positions", "non-finite value");
-    for (uint32_t l = 0; l < m.layerCount; ++l)
-      for (int32_t x : t.geometry.layers[l].texture)
-        if (x < -1 || x >= int64_t(m.textures.size())) fail(tf + "/layers/" + std::to_string(l), "texture index out of range");
-    for (uint32_t x : t.leafImages)
-      if (x >= m.images.size()) fail(tf + "/leaf_images", "image index out of range");
-    const Node& root = t.nodes[0];
-    if (root.parent != -1 || root.level != 0 || root.cellX || root.cellY || root.firstTriangle != 0 || root.triangleCount != tris)
-      fail(tf + "/nodes/0", "is not a root covering every triangle");
-    for (size_t i = 0; i < t.nodes.size(); ++i) {
-      const Node& n = t.nodes[i];
-      const std::string nf = tf + "/nodes/" + std::to_string(i);
-      if (n.level > 60 || (uint64_t(n.cellX) >> n.level) || (uint64_t(n.cellY) >> n.level)) fail(nf, "level or cell out of range");
-      if (uint64_t(n.firstTriangle) + n.triangleCount > tris) fail(nf, "triangle range exceeds the vertex array");
-      if (!(n.minDistance > 0.0f) || !std::isfinite(n.minDistance)) fail(nf, "min_distance must be > 0");
-      for (uint32_t l = 0; l < m.layerCount; ++l) {
-        const uint32_t b = t.atlasBlocks[i * m.layerCount + l];
-        if (b >= m.blocks.size()) fail(nf, "atlas block out of range");
-        const BlockInfo& bi = m.blocks[b];
-        if (bi.kind != BlockKind::Atlas || bi.tree != ti || bi.node != i || bi.layer != l ||
-            bi.size != atlasBytes * t.channels())
-          fail(nf, "atlas block " + std::to_string(b) + " does not belong to it or has the wrong size");
-      }
-      if (n.leaf()) {
-        if (n.triangleCount == 0) fail(nf, "empty leaf");
-        if (uint64_t(n.imageFirst) + n.imageCount > t.leafImages.size()) fail(nf, "image list out of range");
-        continue;
-      }
-      uint32_t next = n.firstTriangle;
-      for (int q = 0; q < 4; ++q) {
-        const int32_t c = n.children[q];
-        if (c < 0) continue;
-        if (size_t(c) <= i || size_t(c) >= t.nodes.size()) fail(nf, "child " + std::to_string(q) + " out of range");
-        const Node& ch = t.nodes[c];
-        if (ch.parent != int32_t(i) || ch.level != n.level + 1 || ch.cellX != n.cellX * 2 + (q & 1) ||
-            ch.cellY != n.cellY * 2 + (q >> 1))
-          fail(nf, "child " + std::to_string(q) + " has the wrong parent, level or cell");
-        if (ch.firstTriangle != next || ch.triangleCount == 0) fail(nf, "child ranges are not contiguous");
-        next += ch.triangleCount;
-      }
-      if (next != n.firstTriangle + n.triangleCount) fail(nf, "children do not cover its range");
-    }
-  }
-}
-
 }  // namespace
 
 const char* blockKindName(BlockKind k) { return k == BlockKind::Atlas ? "atlas" : k == BlockKind::Original ? "original" : "?"; }
@@ -331,7 +256,7 @@ uint32_t PagingFileWriter::addBlock(BlockKind kind, uint8_t tree, uint8_t layer,
 
 void PagingFileWriter::finish(MtaMeta& meta) {
   meta.blocks = blocks_;
-  const std::vector<uint8_t> body = serialize(meta);
+  const std::vector<uint8_t> body = encodeMetadata(meta);
   const uint64_t metaOffset = (end_ + 15) & ~uint64_t(15);
   file_.writeAt(metaOffset, body);
   uint8_t h[kHeaderSize] = {};
@@ -348,11 +273,24 @@ void PagingFileWriter::finish(MtaMeta& meta) {
   file_.commit();
 }
 
-PagingFile::PagingFile(std::string path) : path_(std::move(path)) {
+PagingFile::PagingFile(std::string path, const ResourceLimits& limits) : path_(std::move(path)) {
   fd_ = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd_ < 0) throw Error(path_ + ": cannot open: " + std::strerror(errno));
+  // A constructor that throws runs no destructor: without this, every refused file leaked its descriptor
+  // (a fuzz run ran out of them after some 20,000 inputs).
+  try {
+    load(limits);
+  } catch (...) {
+    ::close(fd_);
+    fd_ = -1;
+    throw;
+  }
+}
+
+void PagingFile::load(const ResourceLimits& limits) {
   struct stat st{};
   if (::fstat(fd_, &st) != 0) throw Error(path_ + ": cannot stat: " + std::strerror(errno));
+  if (S_ISDIR(st.st_mode)) throw Error(path_ + ": is a directory, not an atlas tree file");
   fileSize_ = uint64_t(st.st_size);
   uint8_t h[kHeaderSize];
   if (fileSize_ < kHeaderSize || ::pread(fd_, h, kHeaderSize, 0) != ssize_t(kHeaderSize))
@@ -377,7 +315,7 @@ PagingFile::PagingFile(std::string path) : path_(std::move(path)) {
   const auto ms = sha256(body);
   if (std::memcmp(ms.data(), h + 40, 32) != 0) throw Error(path_ + ": metadata checksum mismatch (corrupted node table or geometry)");
   meta_ = deserialize(body, path_);
-  validateMeta(meta_, path_, metaOffset);
+  validateMetadata(meta_, path_, metaOffset, limits);
 }
 
 PagingFile::~PagingFile() {
@@ -407,8 +345,12 @@ std::vector<uint8_t> PagingFile::readImage(uint32_t image) const {
   std::vector<uint8_t> out(size_t(r.width) * r.height * r.channels);
   const size_t rowBytes = size_t(r.width) * r.channels;
   for (uint32_t k = 0; k < r.pieceCount; ++k) {
-    const PieceRecord& p = meta_.pieces[r.firstPiece + k];
+    const PieceRecord& p = meta_.pieces.at(size_t(r.firstPiece) + k);
     const std::vector<uint8_t> block = readBlock(p.block);
+    // Guaranteed by the validator; checked again because a wrong record here would copy out of bounds.
+    if (uint64_t(p.row0) + p.rows > r.height || p.offset > block.size() || p.rows * rowBytes > block.size() - p.offset)
+      throw Error(path_ + ": pieces[" + std::to_string(r.firstPiece + k) +
+                  "]: internal error: outside its image or block");
     std::memcpy(out.data() + p.row0 * rowBytes, block.data() + p.offset, p.rows * rowBytes);
   }
   return out;

@@ -3,8 +3,9 @@
 //
 // Implements: a streaming writer (blocks are appended as they are produced to path.tmp-<pid>, the
 // metadata and the header last, then renamed) and a reader that validates the header, the metadata
-// checksum and every cross-reference before returning, and verifies each block's checksum when it is
-// read. The runtime streams blocks through PagingFile::readBlock.
+// checksum and every field and cross-reference before returning (paging_file_validation.h; the rules are
+// listed in docs/mta-format.md, "Validation"), and verifies each block's checksum when it is read. The
+// runtime streams blocks through PagingFile::readBlock.
 // Does not implement: building (build.h), rendering or caching policy.
 #pragma once
 
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "base/atomic_file.h"
+#include "base/resource_limits.h"
 #include "mta/params.h"
 #include "mta/scene.h"
 #include "mta/tree.h"
@@ -24,6 +26,12 @@ namespace tessera::mta {
 
 constexpr uint32_t kFormatVersion = 1;
 constexpr uint32_t kHeaderSize = 128;
+// Limits of the format (docs/mta-format.md, "Validation").
+constexpr uint32_t kMaxLayers = 16;
+constexpr uint32_t kMaxNodeLevel = 60;     // the builder stops splitting there (tree_build.cpp)
+constexpr uint32_t kMaxImageSize = 65536;  // width and height of a stored image, as mta::Scene allows
+// Triangles over all trees: draws address vertices with 32-bit indices (3 per triangle).
+constexpr uint64_t kMaxTriangles = UINT32_MAX / 3;
 
 enum class BlockKind : uint8_t { Atlas = 1, Original = 2 };
 const char* blockKindName(BlockKind k);
@@ -87,11 +95,16 @@ class PagingFileWriter {
   std::vector<BlockInfo> blocks_;
 };
 
+// The metadata bytes of `meta`, as PagingFileWriter::finish stores them (docs/mta-format.md, "Metadata").
+// Public for tools and tests that rewrite a file's metadata; nothing is checked.
+std::vector<uint8_t> encodeMetadata(const MtaMeta& meta);
+
 class PagingFile {
  public:
-  // Reads and validates the header and the metadata (checksum, sizes, every index, node ranges).
-  // Throws Error naming the file, the field and the reason.
-  explicit PagingFile(std::string path);
+  // Reads and validates the header and the metadata: checksums, sizes, and every field a consumer relies
+  // on (paging_file_validation.h), within `limits` (mtaLeafBlockRefs). Throws Error naming the file, the
+  // field and the reason: "<file>: <record>[<index>].<field>: <reason>".
+  explicit PagingFile(std::string path, const ResourceLimits& limits = {});
   ~PagingFile();
   PagingFile(const PagingFile&) = delete;
   PagingFile& operator=(const PagingFile&) = delete;
@@ -105,6 +118,7 @@ class PagingFile {
   std::vector<uint8_t> readAtlas(uint32_t tree, uint32_t node, uint32_t layer = 0) const;
 
  private:
+  void load(const ResourceLimits& limits);  // the header and the metadata, validated
   std::string path_;
   int fd_ = -1;
   uint64_t fileSize_ = 0;

@@ -1,14 +1,24 @@
 // Build parameters of the multiresolution texture atlas tree (Buchholz's thesis §4.2, §4.5.2).
 //
-// Implements: the parameter set of `tessera mta build`, its validation, the deterministic tan(φ/2)
-// and the projection factor f_proj = w_screen / (2 · d_min · tan(φ/2) · τ).
-// Does not implement: the build itself (build.h).
+// Implements: the parameter set of `tessera mta build`, its validation (the same rules for the options of
+// a build and for the values a paging file stores, so that every file the builder writes is one the reader
+// accepts), the deterministic tan(φ/2) and the projection factor f_proj = w_screen / (2 · d_min · tan(φ/2) · τ).
+// Does not implement: the build itself (build.h), the rest of a paging file's validation (paging_file.h).
 #pragma once
 
 #include <cstdint>
 #include <string>
 
+#include "raster/limits.h"
+
 namespace tessera::mta {
+
+// The documented ranges of the parameters (docs/mta-format.md, "Validation").
+// w_screen: the renderer's frame width limit (raster/limits.h), since minDistance is rescaled to the frame.
+constexpr uint32_t kMaxScreenWidth = uint32_t(kMaxTextureSize);
+// tan(φ/2), φ about 0.000115° .. 179.99989°: 1 / tan and the projection built from it stay well inside
+// float range for every frame shape the renderer accepts (mta/camera.h builds float matrices).
+constexpr double kMinTanHalfFov = 1e-6, kMaxTanHalfFov = 1e6;
 
 struct BuildParams {
   // d_min: absolute when > 0; otherwise d_min = D / dMinDivisor with D the scene's bounding-box diagonal
@@ -26,8 +36,11 @@ struct BuildParams {
   uint32_t threads = 0;          // 0 = all hardware threads (the bytes never depend on it)
   bool progress = false;         // progress lines on stderr every ~2 s
 
-  // Throws Error naming the first invalid field.
-  void validate() const;
+  // Throws Error("<prefix><field>: <reason>") for the first field outside its range; fields are named as
+  // in the paging file and `mta info` (d_min, d_min_divisor, tau, atlas_size, border, fov_degrees,
+  // tan_half_fov, screen_width, critical_threshold). stored: the values come from a paging file, where
+  // tan_half_fov is always the value used (> 0), never 0 for "derive it from fov_degrees".
+  void validate(const std::string& prefix = "mta parameter ", bool stored = false) const;
   // tan(φ/2): tanHalfFov if given, else detSin/detCos of φ/2 (a fixed Taylor series, no libm).
   double effectiveTanHalfFov() const;
 };

@@ -59,7 +59,12 @@ Residency::Residency(const PagingFile& file, ResidencyOptions options) : file_(f
   if (options_.maxQueue == 0) throw Error("memory manager: the request queue length must be at least 1");
   uint64_t rootBytes = 0;
   for (const Tree& t : m.trees)
-    for (uint32_t l = 0; l < m.layerCount; ++l) rootBytes += m.blocks[t.atlasBlocks[l]].size;
+    for (uint32_t l = 0; l < m.layerCount; ++l) {
+      // Guaranteed by the paging file's validator; checked because it is indexed with.
+      if (t.atlasBlocks.size() < m.layerCount || t.atlasBlocks[l] >= m.blocks.size())
+        throw Error("memory manager: internal error: a root atlas block is out of range");
+      rootBytes += m.blocks[t.atlasBlocks[l]].size;
+    }
   if (rootBytes > options_.capacityBytes)
     throw Error("memory manager: capacity " + std::to_string(options_.capacityBytes) + " bytes cannot hold the root atlases (" +
                 std::to_string(rootBytes) + " bytes), which stay in memory (thesis §4.6)");

@@ -2,13 +2,35 @@
 
 #include <algorithm>
 #include <numeric>
+#include <string>
+
+#include "base/error.h"
 
 namespace tessera::mta {
+
+namespace {
+
+// What this file indexes with, checked although PagingFile's validator guarantees it (and more: that the
+// leaves partition the triangles): a meta that breaks it is an Error, never a write out of bounds.
+[[noreturn]] void broken(size_t tree, const std::string& why) {
+  throw Error("runtime geometry: internal error: tree " + std::to_string(tree) + ": " + why +
+              " (PagingFile's validator refuses such a file)");
+}
+
+}  // namespace
 
 RuntimeGeometry buildRuntimeGeometry(const MtaMeta& meta) {
   RuntimeGeometry g;
   size_t total = 0;
-  for (const Tree& t : meta.trees) total += t.geometry.triangleCount();
+  for (size_t ti = 0; ti < meta.trees.size(); ++ti) {
+    const Tree& t = meta.trees[ti];
+    const size_t tris = t.geometry.triangleCount();
+    if (t.geometry.positions.size() != tris * 3 || t.atlasUV.size() != tris * 3 || t.geometry.layers.empty() ||
+        t.geometry.layers[0].texture.size() != tris || t.geometry.layers[0].uv.size() != tris * 3)
+      broken(ti, "arrays do not match the triangle count");
+    total += tris;
+  }
+  if (total > kMaxTriangles) broken(0, "more triangles than 32-bit vertex indices address");
   g.vertices.resize(total * 3);
   g.triangleTree.resize(total);
   g.triangleLeaf.resize(total);
@@ -25,10 +47,13 @@ RuntimeGeometry buildRuntimeGeometry(const MtaMeta& meta) {
     for (int32_t tex : layer0.texture) textured += tex >= 0 ? 1 : 0;
     rt.firstUntextured = base + textured;
     uint32_t nextTextured = base, nextUntextured = rt.firstUntextured;
+    const uint32_t treeEnd = base + uint32_t(t.geometry.triangleCount());
     // Pre-order node indices visit the leaves depth first, as the file's ranges are laid out.
     for (size_t n = 0; n < t.nodes.size(); ++n) {
       const Node& node = t.nodes[n];
       if (!node.leaf()) continue;
+      if (uint64_t(node.firstTriangle) + node.triangleCount > t.geometry.triangleCount())
+        broken(ti, "leaf " + std::to_string(n) + "'s triangles run past the vertex array");
       // Stable sort by texture, untextured (-1) last: keeps the file's order inside each run.
       order.resize(node.triangleCount);
       std::iota(order.begin(), order.end(), node.firstTriangle);
@@ -43,6 +68,9 @@ RuntimeGeometry buildRuntimeGeometry(const MtaMeta& meta) {
       for (uint32_t k = 0; k < node.triangleCount; ++k) {
         const uint32_t src = order[k];
         const int32_t tex = layer0.texture[src];
+        if (tex >= int64_t(meta.textures.size())) broken(ti, "texture " + std::to_string(tex) + " out of range");
+        if (tex >= 0 ? nextTextured >= rt.firstUntextured : nextUntextured >= treeEnd)
+          broken(ti, "leaf " + std::to_string(n) + " overlaps another leaf's triangles");
         const uint32_t dst = tex >= 0 ? nextTextured++ : nextUntextured++;
         if (tex >= 0) {
           if (g.runs.size() == lr.runFirst || g.runs.back().texture != tex) g.runs.push_back(TextureRun{tex, dst, 0});

@@ -61,6 +61,8 @@ struct RuntimeGeometry {
   uint32_t triangleCount() const { return uint32_t(triangleLeaf.size()); }
 };
 
+// Precondition: `meta` passed PagingFile's validation (its leaves partition each tree's triangles). A meta
+// that does not is an Error ("internal error"), never a write out of bounds.
 RuntimeGeometry buildRuntimeGeometry(const MtaMeta& meta);
 
 }  // namespace tessera::mta

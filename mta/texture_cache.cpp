@@ -80,9 +80,16 @@ const MipChain& TextureCache::atlas(uint8_t tree, uint32_t node) {
   const uint64_t key = (uint64_t(1) << 62) | (uint64_t(tree) << 32) | node;
   if (auto it = entries_.find(key); it != entries_.end()) return *it->second.chain;
   const MtaMeta& m = file_.meta();
+  if (tree >= m.trees.size() || size_t(node) * m.layerCount >= m.trees[tree].atlasBlocks.size())
+    throw Error("texture cache: internal error: atlas of tree " + std::to_string(tree) + " node " +
+                std::to_string(node) + " out of range");
   const uint32_t block = m.trees[tree].atlasBlocks[size_t(node) * m.layerCount];
   const std::span<const uint8_t> raw = blockBytes(block);
   const uint32_t a = m.params.atlasSize;
+  // The validator fixes an atlas block's size; a wrong one here would be read past its end.
+  if (raw.size() != size_t(a) * a * m.trees[tree].channels())
+    throw Error("texture cache: internal error: block " + std::to_string(block) +
+                " is not an atlas of the tree's size");
   auto chain = std::make_shared<MipChain>();
   chain->width = chain->height = a;
   chain->levels = buildMipChainRGBA8(a, a, toRGBA(raw.data(), size_t(a) * a, m.trees[tree].channels()));
@@ -93,13 +100,21 @@ const MipChain& TextureCache::image(uint32_t image) {
   const uint64_t key = (uint64_t(2) << 62) | image;
   if (auto it = entries_.find(key); it != entries_.end()) return *it->second.chain;
   const MtaMeta& m = file_.meta();
+  if (image >= m.images.size())
+    throw Error("texture cache: internal error: image " + std::to_string(image) + " out of range");
   const ImageRecord& r = m.images[image];
   std::vector<uint8_t> texels(size_t(r.width) * r.height * r.channels);
   std::vector<std::pair<uint32_t, uint64_t>> blocks;
   const size_t rowBytes = size_t(r.width) * r.channels;
   for (uint32_t k = 0; k < r.pieceCount; ++k) {
-    const PieceRecord& p = m.pieces[r.firstPiece + k];
+    const PieceRecord& p = m.pieces.at(size_t(r.firstPiece) + k);
     const std::span<const uint8_t> bytes = blockBytes(p.block);
+    // Guaranteed by the validator (pieces tile their image's rows and their block); checked because a
+    // wrong record would copy out of bounds.
+    if (uint64_t(p.row0) + p.rows > r.height || p.offset > bytes.size() ||
+        size_t(p.rows) * rowBytes > bytes.size() - p.offset)
+      throw Error("texture cache: internal error: piece " + std::to_string(r.firstPiece + k) +
+                  " lies outside its image or block");
     std::memcpy(texels.data() + size_t(p.row0) * rowBytes, bytes.data() + p.offset, size_t(p.rows) * rowBytes);
     blocks.emplace_back(p.block, residency_ ? residency_->generation(p.block) : 0);
   }

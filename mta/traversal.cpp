@@ -18,22 +18,45 @@ const char* renderModeName(RenderMode m) {
 BlockIndex buildBlockIndex(const MtaMeta& meta) {
   BlockIndex bi;
   bi.layerCount = meta.layerCount;
-  for (const Tree& t : meta.trees) {
+  for (size_t ti = 0; ti < meta.trees.size(); ++ti) {
+    const Tree& t = meta.trees[ti];
     BlockIndex::PerTree pt;
     const size_t n = t.nodes.size();
+    // What the index and the walkers below rely on, checked although PagingFile's validator guarantees
+    // it: every block and image index in range, and child indices that only ever increase, so that the
+    // recursive walks stay in the table and end (their depth is the tree's, at most kMaxNodeLevel + 1).
+    auto broken = [&](size_t node, const std::string& why) {
+      throw Error("block index: internal error: tree " + std::to_string(ti) + " node " + std::to_string(node) + ": " +
+                  why + " (PagingFile's validator refuses such a file)");
+    };
+    if (t.atlasBlocks.size() != n * meta.layerCount) broken(0, "the atlas block table does not match the node count");
     pt.atlasFirst.resize(n);
     pt.originalFirst.assign(n, 0);
     pt.originalCount.assign(n, 0);
     std::vector<uint32_t> blocks;
     for (size_t i = 0; i < n; ++i) {
-      pt.atlasFirst[i] = uint32_t(pt.atlas.size());
-      for (uint32_t l = 0; l < meta.layerCount; ++l) pt.atlas.push_back(t.atlasBlocks[i * meta.layerCount + l]);
       const Node& node = t.nodes[i];
+      for (int32_t c : node.children)
+        if (c != -1 && (c <= int64_t(i) || uint64_t(c) >= n))
+          broken(i, "child index " + std::to_string(c) + " out of range");
+      if (node.level > kMaxNodeLevel) broken(i, "deeper than the format allows");
+      pt.atlasFirst[i] = uint32_t(pt.atlas.size());
+      for (uint32_t l = 0; l < meta.layerCount; ++l) {
+        pt.atlas.push_back(t.atlasBlocks[i * meta.layerCount + l]);
+        if (pt.atlas.back() >= meta.blocks.size()) broken(i, "atlas block out of range");
+      }
       if (!node.leaf()) continue;
+      if (uint64_t(node.imageFirst) + node.imageCount > t.leafImages.size()) broken(i, "image list out of range");
       blocks.clear();
       for (uint32_t k = 0; k < node.imageCount; ++k) {
-        const ImageRecord& img = meta.images[t.leafImages[node.imageFirst + k]];
-        for (uint32_t p = 0; p < img.pieceCount; ++p) blocks.push_back(meta.pieces[img.firstPiece + p].block);
+        const uint32_t image = t.leafImages[node.imageFirst + k];
+        if (image >= meta.images.size()) broken(i, "image " + std::to_string(image) + " out of range");
+        const ImageRecord& img = meta.images[image];
+        if (uint64_t(img.firstPiece) + img.pieceCount > meta.pieces.size()) broken(i, "image pieces out of range");
+        for (uint32_t p = 0; p < img.pieceCount; ++p) {
+          blocks.push_back(meta.pieces[img.firstPiece + p].block);
+          if (blocks.back() >= meta.blocks.size()) broken(i, "piece block out of range");
+        }
       }
       std::sort(blocks.begin(), blocks.end());
       blocks.erase(std::unique(blocks.begin(), blocks.end()), blocks.end());

@@ -56,6 +56,9 @@ struct BlockIndex {
   std::vector<PerTree> trees;
   uint32_t layerCount = 1;
 };
+// Precondition: `meta` passed PagingFile's validation. Also checks what the walkers of this file index
+// with (child indices that only increase, block and image indices in range): a meta that breaks it is an
+// Error ("internal error"), never an access out of bounds or an endless walk.
 BlockIndex buildBlockIndex(const MtaMeta& meta);
 
 // Per-frame derived view quantities shared by both traversals.

@@ -104,6 +104,33 @@ PY
     if "$tessera" mta info cut.mta > /dev/null 2> err.txt; then fail "accepted a truncated tree"; fi
     grep -q "cut.mta" err.txt || fail "message does not name the file: $(cat err.txt)"
     ! grep -qi "internal error" err.txt || fail "crashed: $(cat err.txt)"
+    # Issue 9, item 1: the root's four child indices set to -5 and both checksums recomputed. `mta info`
+    # accepted it and `mta render` wrote out of bounds; every command must refuse it on open.
+    python3 - tree.mta neg.mta <<'PY'
+import hashlib, struct, sys
+b = bytearray(open(sys.argv[1], 'rb').read())
+meta = struct.unpack_from('<Q', b, 24)[0]
+p = meta + 4 * 4 + 6 * 8 + 5 * 8 + 4 + 3 * 8             # parameters, stats (docs/mta-format.md)
+n, = struct.unpack_from('<I', b, p); p += 4 + 6 * n        # textures
+n, = struct.unpack_from('<I', b, p); p += 4
+for _ in range(n):                                         # images: 5 u32, then the name
+    k, = struct.unpack_from('<I', b, p + 20); p += 24 + k
+n, = struct.unpack_from('<Q', b, p); p += 8 + 24 * n       # pieces
+n, = struct.unpack_from('<Q', b, p); p += 8 + 56 * n       # blocks
+p += 4 + 1 + 8                                             # tree count, alpha, node count
+struct.pack_into('<4i', b, p + 44, -5, -5, -5, -5)         # node 0: 44 bytes of bounds ... cell, then children
+b[40:72] = hashlib.sha256(bytes(b[meta:])).digest()
+b[96:128] = hashlib.sha256(bytes(b[:96])).digest()
+open(sys.argv[2], 'wb').write(b)
+PY
+    for cmd in "mta info neg.mta" "mta render neg.mta --frames 2 --size 64x48 -o render --quiet" \
+               "mta runs neg.mta --frames 2 --size 64x48 -o runs --quiet" "texel neg.mta --frames 2 --size 64x48 -o texel --quiet"; do
+      rc=0
+      # shellcheck disable=SC2086  # $cmd is split into the command's words on purpose
+      "$tessera" $cmd > /dev/null 2> err.txt || rc=$?
+      [ "$rc" -eq 2 ] || fail "'$cmd' exited with $rc, not 2: $(cat err.txt)"
+      grep -q "neg.mta: trees\[0\].nodes\[0\].children\[0\]: -5 is neither -1" err.txt || fail "'$cmd': $(cat err.txt)"
+    done
     ;;
   atlas_tree_goldens_reproduce_bit_exactly)
     # Includes the built-in scenes; the railway frames render data/railway.glb.

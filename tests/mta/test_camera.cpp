@@ -261,12 +261,13 @@ TEST(CameraPath, UnknownBuiltinPathNamesAndBadBoundsAreRejected) {
 TEST(CameraPath, PathFileRoundTripIsExact) {
   CameraPath p = builtinPath("thesis", kCity, 40);
   p.name = "my thesis path";
-  // Values that need all 17 digits, per-frame changes of every directive, and a negative zero.
+  // Values that need all 17 digits, per-frame changes of every directive, a negative zero, and the
+  // largest magnitude a path file accepts.
   p.frames[3].tanHalfFovX = 0.1 + 0.2;
   p.frames[4].nearPlane = 1.0 / 3.0;
-  p.frames[5].farPlane = 1e300;
+  p.frames[5].farPlane = kMaxPathCoordinate;
   p.frames[6].up = {1e-310, 1, -0.0};
-  p.frames[7].eye = {-0.0, 5e-324, 1.2345678901234567e150};
+  p.frames[7].eye = {-0.0, 5e-324, 1.2345678901234567e14};
   p.frames[8].target = {std::nextafter(1.0, 2.0), 123456789.125, -7};
   testing::TempFile f("path.txt");
   writePathFile(p, f.path);
