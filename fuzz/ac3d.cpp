@@ -1,5 +1,5 @@
-// Fuzz target `ac3d`: AC3D (.ac) through model::loadModel, whichever reader the loader uses for it (Assimp
-// today), then the textures of a model that loaded (fuzz/model_target.h).
+// Fuzz target `ac3d`: AC3D (.ac) through model::loadModel (the project's AC3D reader, model/ac3d_file.h),
+// then the textures of a model that loaded (fuzz/model_target.h).
 //
 // The input is one .ac file, written to the scratch directory as "input.ac". A `texture "tex.png"` line
 // names a valid 2 x 2 PNG beside it.

@@ -25,23 +25,6 @@ constexpr double kCapacityMiB = 48.0;
 constexpr const char* kBudget = "4MiB";
 constexpr uint32_t kQueue = 32;
 
-// The built-in "thesis" path over the union of the trees' root bounds, with the build's field of view
-// (as `--path thesis --frames 60` lays it out).
-mta::CameraPath thesisPath(const mta::MtaMeta& meta) {
-  std::array<float, 6> b{1e30f, 1e30f, 1e30f, -1e30f, -1e30f, -1e30f};
-  for (const mta::Tree& t : meta.trees) {
-    if (t.nodes.empty()) continue;
-    for (int k = 0; k < 3; ++k) {
-      b[k] = std::min(b[k], t.nodes[0].bounds[k]);
-      b[k + 3] = std::max(b[k + 3], t.nodes[0].bounds[k + 3]);
-    }
-  }
-  if (b[0] > b[3]) throw Error("the tree has no triangles: no camera path can be laid out over it");
-  mta::CameraPath p = mta::builtinPath("thesis", b, kFrames);
-  for (mta::Camera& c : p.frames) c.tanHalfFovX = meta.params.tanHalfFov;
-  return p;
-}
-
 // `--size 256x192 --capacity 48 --budget 4MiB` with every other option at its default.
 mta::RendererOptions rendererOptions() {
   mta::RendererOptions o;
@@ -78,7 +61,7 @@ std::vector<RailwayFrame> railwayFrames(const std::string& railwayPath) {
   mta::buildMta(mta::sceneFromModel(std::make_shared<const model::Model>(model::loadModel(railwayPath))), bp, tree);
 
   mta::PagingFile file(tree);
-  const mta::CameraPath path = thesisPath(file.meta());
+  const mta::CameraPath path = mta::builtinPathOverTree("thesis", file.meta(), kFrames);
   mta::TreeRenderer renderer(file, rendererOptions());
   const std::set<size_t> keep = {0, 15, 30, 45, 59};
   std::vector<RailwayFrame> out;

@@ -5,9 +5,9 @@
 // path at 256x192 with a 48 MiB memory manager and a 4 MiB load budget per frame, keeping frames 0, 15,
 // 30, 45 and 59. This is exactly what the entry's "command" does with the CLI
 // (`tessera mta render tree.mta --path thesis --frames 60 --size 256x192 --capacity 48 --budget 4MiB`):
-// the path is laid out over the roots of the tree as tools/cli/mta_path_run.cpp loadPath() lays out
-// a built-in path, with the build's field of view, and the renderer options are those that
-// rendererOptions() makes of these flags. A change to either must change both.
+// the path is mta::builtinPathOverTree, as the CLI lays out a built-in path, and the renderer options
+// are those that tools/cli/mta_path_run.cpp rendererOptions() makes of these flags (a change there must
+// change them here; the CLI case railway_golden_command_reproduces_the_golden_frames catches a drift).
 // Does not implement: comparing the frames (golden_diff.h).
 #pragma once
 

@@ -563,4 +563,19 @@ void writePathFile(const CameraPath& p, const std::string& path) {
   writeFileAtomically(path, out);
 }
 
+CameraPath builtinPathOverTree(std::string_view name, const MtaMeta& meta, uint32_t frames) {
+  std::array<float, 6> b{1e30f, 1e30f, 1e30f, -1e30f, -1e30f, -1e30f};
+  for (const Tree& t : meta.trees) {
+    if (t.nodes.empty()) continue;
+    for (int k = 0; k < 3; ++k) {
+      b[k] = std::min(b[k], t.nodes[0].bounds[k]);
+      b[k + 3] = std::max(b[k + 3], t.nodes[0].bounds[k + 3]);
+    }
+  }
+  if (b[0] > b[3]) throw Error("the tree has no triangles: no camera path can be laid out over it");
+  CameraPath p = builtinPath(name, b, frames);
+  for (Camera& c : p.frames) c.tanHalfFovX = meta.params.tanHalfFov;
+  return p;
+}
+
 }  // namespace tessera::mta

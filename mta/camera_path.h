@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "mta/camera.h"
+#include "mta/paging_file.h"
 
 namespace tessera::mta {
 
@@ -40,6 +41,10 @@ std::vector<std::string> builtinPathNames();
 // Throws Error for an unknown name (listing the known ones), more than kMaxPathFrames frames
 // (base/resource_limits.h), or non-finite or inverted bounds.
 CameraPath builtinPath(std::string_view name, const std::array<float, 6>& sceneBounds, uint32_t frames = 0);
+// builtinPath over the union of the root bounds of an atlas tree's trees, with the build's field of view on
+// every frame (so that minDistance needs no rescaling for it): what `mta render --path <name>` lays out,
+// and the golden frames too. Throws Error when the tree has no triangles.
+CameraPath builtinPathOverTree(std::string_view name, const MtaMeta& meta, uint32_t frames = 0);
 
 // Reads a camera path file. The path's name is the file's `name` directive, else the file name without
 // its extension (bytes that are not UTF-8 replaced by '?'). Throws Error("<file>:<line>: <reason>") for any

@@ -364,6 +364,14 @@ PY
     refused 2 "--memory-budget '0': a frame budget must be at least 1 byte" "$tessera" render blend --memory-budget 0
     refused 2 "--memory-budget '16777216TiB': more than 2^64 - 1 bytes" "$tessera" validate blend.tframe --memory-budget 16777216TiB
     ;;
+  model_over_its_budget_exits_2)
+    # railway.glb has 26,797 triangles: a budget of 1,000 refuses it before any geometry is read.
+    refused 2 "needs 26797 triangles" "$tessera" mta build "$src/data/railway.glb" -o tree.mta --model-budget-triangles 1000 --quiet
+    grep -qF -- "--model-budget-triangles" refused.err || fail "the message does not name the option: $(cat refused.err)"
+    [ ! -e tree.mta ] || fail "a refused build wrote tree.mta"
+    refused 2 "--model-budget-textures" "$tessera" mta build "$src/data/railway.glb" -o tree.mta --model-budget-textures 1KiB --quiet
+    refused 2 "--model-budget-instances" "$tessera" mta build "$src/data/railway.glb" -o tree.mta --model-budget-instances 0
+    ;;
   *) fail "unknown case $case_name" ;;
 esac
 echo "ok: $case_name"

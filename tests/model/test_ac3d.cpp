@@ -33,7 +33,6 @@ std::string errorOf(F&& f) {
   return "";
 }
 
-#define EXPECT_CONTAINS(haystack, needle) EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << (haystack)
 
 // Writes `text` as dir/name and loads it with the given limits.
 Model load(const ScratchDir& dir, const std::string& name, const std::string& text, const ResourceLimits& limits = {}) {

@@ -20,6 +20,7 @@ struct MtaBuildArgs {
   mta::BuildParams p;
   double memoryLimitGiB = 4.0;
   bool quiet = false;
+  ResourceLimits limits;  // the model budgets (--model-budget-*)
 };
 
 void printSummary(const nlohmann::json& j) {
@@ -62,12 +63,13 @@ void addMtaCommands(CLI::App& app) {
                 {0.0, 1048576.0, false, false})
       ->capture_default_str();
   addThreadsOption(build, a->p.threads, "Worker threads; the bytes never depend on it");
+  addModelBudgetOptions(build, a->limits);
   build->add_flag("--quiet", a->quiet, "No progress on stderr");
   build->callback([a] {
     a->p.memoryLimit = uint64_t(a->memoryLimitGiB * double(1ull << 30));
     a->p.progress = !a->quiet;
     a->p.validate();
-    auto model = std::make_shared<const model::Model>(model::loadModel(a->scene));
+    auto model = std::make_shared<const model::Model>(model::loadModel(a->scene, a->limits));
     const mta::Scene scene = mta::sceneFromModel(model);
     const mta::BuildReport r = mta::buildMta(scene, a->p, a->out);
     mta::PagingFile f(a->out);

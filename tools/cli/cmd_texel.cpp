@@ -51,7 +51,7 @@ nlohmann::json runTexel(const PathRunArgs& a) {
     // A model: build its tree with the default parameters first (kept, so later runs can reuse it).
     treePath = (fs::path(a.out) / "tree.mta").string();
     if (!a.quiet) std::fprintf(stderr, "texel: %s is a model; building its atlas tree into %s\n", a.input.c_str(), treePath.c_str());
-    auto model = std::make_shared<const model::Model>(model::loadModel(a.input));
+    auto model = std::make_shared<const model::Model>(model::loadModel(a.input, a.limits));
     mta::BuildParams p;
     p.dMin = a.buildDMin;
     p.progress = !a.quiet;
@@ -122,6 +122,7 @@ void addTexelCommand(CLI::App& app) {
                 "With a model: d_min of its atlas tree build (default 0: scene diagonal / 72, which for a small scene "
                 "such as railway.glb means gigatexels; see docs/mta-build.md)",
                 kNonNegative);
+  addModelBudgetOptions(texel, ta->limits);
   texel->callback([ta] { std::printf("%s\n", runTexel(*ta).dump(2).c_str()); });
 }
 

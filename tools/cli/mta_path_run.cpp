@@ -52,18 +52,7 @@ mta::CameraPath loadPath(const PathRunArgs& a, const mta::MtaMeta& meta) {
   const auto names = mta::builtinPathNames();
   mta::CameraPath p;
   if (std::find(names.begin(), names.end(), a.path) != names.end()) {
-    std::array<float, 6> b{1e30f, 1e30f, 1e30f, -1e30f, -1e30f, -1e30f};
-    for (const mta::Tree& t : meta.trees) {
-      if (t.nodes.empty()) continue;
-      for (int k = 0; k < 3; ++k) {
-        b[k] = std::min(b[k], t.nodes[0].bounds[k]);
-        b[k + 3] = std::max(b[k + 3], t.nodes[0].bounds[k + 3]);
-      }
-    }
-    if (b[0] > b[3]) throw Error("the tree has no triangles: no camera path can be laid out over it");
-    p = mta::builtinPath(a.path, b, a.frames);
-    // The build's field of view, so that minDistance needs no rescaling for it.
-    for (mta::Camera& c : p.frames) c.tanHalfFovX = meta.params.tanHalfFov;
+    p = mta::builtinPathOverTree(a.path, meta, a.frames);
   } else {
     if (!std::filesystem::exists(a.path))
       throw Error("--path '" + a.path + "': neither a built-in path (" + [&] {

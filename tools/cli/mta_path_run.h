@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "base/resource_limits.h"
 #include "mta/camera_path.h"
 #include "mta/paging_file.h"
 #include "mta/tree_renderer.h"
@@ -30,6 +31,7 @@ struct PathRunArgs {
   uint32_t saveEvery = 25;    // 0 = no frame images
   bool quiet = false;
   double buildDMin = 0.0;     // texel with a model: d_min of the build (0 = D / 72)
+  ResourceLimits limits;      // texel with a model: the model budgets (--model-budget-*)
 };
 
 // Registers the options above on a subcommand.

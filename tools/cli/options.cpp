@@ -127,4 +127,38 @@ CLI::Option* addMemoryBudgetOption(CLI::App* cmd, ResourceLimits& limits) {
       }));
 }
 
+namespace {
+
+void addCountBudget(CLI::App* cmd, const std::string& name, uint64_t& limit, const std::string& what) {
+  cmd->add_option_function<std::string>(
+         name, [&limit, name](const std::string& text) { limit = *decimal(text); },
+         fmt::format("Most {} a model may describe, checked before its geometry is read (default {}; docs/limits.md)",
+                     what, limit))
+      ->check(checker("N >= 1", [name](const std::string& text) {
+        const std::optional<uint64_t> n = decimal(text);
+        if (!n || *n == 0) refuse(name, text, "expected a whole number >= 1");
+      }));
+}
+
+}  // namespace
+
+void addModelBudgetOptions(CLI::App* cmd, ResourceLimits& limits) {
+  addCountBudget(cmd, "--model-budget-instances", limits.modelInstances,
+                 "instances (nodes reached through the scene graph)");
+  addCountBudget(cmd, "--model-budget-triangles", limits.modelTriangles, "triangles over all instances");
+  addCountBudget(cmd, "--model-budget-vertices", limits.modelVertices, "vertices over all instances");
+  cmd->add_option_function<std::string>(
+         "--model-budget-textures",
+         [&limits](const std::string& text) {
+           limits.modelTextureBytes = parseByteSize(text, "--model-budget-textures");
+         },
+         fmt::format("Decoded RGBA8 bytes of all of a model's textures, from their headers, before any is decoded "
+                     "(a size such as 2GiB, at least 1B; default {}; docs/limits.md)",
+                     formatBytes(ResourceLimits{}.modelTextureBytes)))
+      ->check(checker("SIZE >= 1B", [](const std::string& text) {
+        if (parseByteSize(text, "--model-budget-textures") == 0)
+          refuse("--model-budget-textures", text, "a texture budget must be at least 1 byte");
+      }));
+}
+
 }  // namespace tessera::cli

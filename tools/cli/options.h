@@ -54,4 +54,10 @@ CLI::Option* addRealOption(CLI::App* cmd, const std::string& name, double& value
 // --memory-budget SIZE: ResourceLimits::frameBytes, at least 1 byte (docs/limits.md).
 CLI::Option* addMemoryBudgetOption(CLI::App* cmd, ResourceLimits& limits);
 
+// The budgets of a model load (docs/limits.md), for every command that reads a model file:
+// --model-budget-instances N, --model-budget-triangles N, --model-budget-vertices N (whole numbers >= 1)
+// and --model-budget-textures SIZE (decoded RGBA8 bytes, a byte size >= 1B). The loaders' messages name
+// these options.
+void addModelBudgetOptions(CLI::App* cmd, ResourceLimits& limits);
+
 }  // namespace tessera::cli
