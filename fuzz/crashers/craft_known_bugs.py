@@ -3,7 +3,7 @@
 
 Usage: python3 fuzz/crashers/craft_known_bugs.py [fuzz]
 
-These are the known bugs of issue 9 that a short fuzz run does not reach by itself: inputs that need
+These are the known bugs of the first fuzz campaign (fuzz/crashers/README.md) that a short fuzz run does not reach by itself: inputs that need
 thousands of nested elements, or one exact huge count. Each function says which bug it shows. The .mta
 reproducer starts from a seed of fuzz/corpus/mta/ and gets valid checksums, so `tessera mta render`
 reproduces it too. Deterministic; standard library only.

@@ -1,4 +1,4 @@
-// glTF inputs from the fuzz campaign of issue 9, one test per bug: each is a clear tessera::Error naming
+// glTF inputs from the fuzz campaign (fuzz/crashers/README.md), one test per bug: each is a clear tessera::Error naming
 // the file, the JSON pointer and the reason, found before anything is allocated for it, never a crash,
 // a hang or a silently wrong model. The small reproducers live in tests/model/hostile/gltf/; what is
 // big or needs a variation is written here.

@@ -1,4 +1,4 @@
-// OBJ / MTL inputs from the fuzz campaign of issue 9, one test per bug: each is a tessera::Error naming
+// OBJ / MTL inputs from the fuzz campaign (fuzz/crashers/README.md), one test per bug: each is a tessera::Error naming
 // file:line and the reason, where tinyobjloader accepted it silently, wrapped an index, or read the
 // wrong file. The small reproducers live in tests/model/hostile/obj/.
 #include <gtest/gtest.h>

@@ -118,7 +118,7 @@ TEST(PagingFileValidation, ImageRowsLongerThanABlockAreStoredOneRowPerBlockAndAc
 // ---- the node table ------------------------------------------------------------------------------------
 
 TEST(PagingFile, ChildIndicesOutOfRangeAreRefusedEvenWithValidChecksums) {
-  // The fuzz finding of issue 9: the root's four children -5 made the root a leaf covering every
+  // The outside fuzz campaign's finding: the root's four children -5 made the root a leaf covering every
   // triangle, on top of the real leaves, and buildRuntimeGeometry wrote past its vertex array.
   expectRefused(
       [](MtaMeta& m) {
