@@ -108,6 +108,8 @@ def main():
     ap.add_argument("--targets", default=",".join(TARGETS))
     ap.add_argument("--rss-limit-mb", type=int, default=2048)
     ap.add_argument("--timeout", type=int, default=10)
+    ap.add_argument("--summary", help="where to write the JSON summary (default: BUILD/fuzz-summary.json); lets two "
+                    "campaigns over different --targets run side by side")
     args = ap.parse_args()
     source = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     targets = [t for t in args.targets.split(",") if t]
@@ -140,7 +142,7 @@ def main():
         for f, v in r["known_crashers"].items():
             if v == "passes":
                 print(f"fuzz/crashers/{t}/{f} no longer fails: move it into fuzz/corpus/{t}/ (fuzz/README.md)")
-    path = os.path.join(args.build, "fuzz-summary.json")
+    path = args.summary or os.path.join(args.build, "fuzz-summary.json")
     with open(path + ".tmp", "w") as f:
         json.dump(summary, f, indent=1, sort_keys=True)
         f.write("\n")
