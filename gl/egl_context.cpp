@@ -133,15 +133,17 @@ EGLDisplay acquireDisplay(const ContextRequest& request, GlInfo& info) {
     EGLDisplay d = openDisplay(request.eglPlatform, s.platform);
     EGLint major = 0, minor = 0;
     if (!eglInitialize(d, &major, &minor)) {
-      // zink needs a Vulkan driver (lavapipe: Debian's mesa-vulkan-drivers, and libvulkan1); without
-      // one Mesa 22.3 fails to create the screen and eglInitialize reports EGL_NOT_INITIALIZED.
+      // zink needs a Vulkan driver (lavapipe: Debian's mesa-vulkan-drivers, and libvulkan1), and Mesa
+      // 22.3's zink skips CPU devices unless LIBGL_ALWAYS_SOFTWARE=1; otherwise it fails to create the
+      // screen and eglInitialize reports EGL_NOT_INITIALIZED. The backend does not set that variable.
       const std::string why =
           request.driver.empty()
               ? std::string()
               : " with GALLIUM_DRIVER=" + request.driver +
                     (request.driver == "zink"
                          ? " (zink runs on a Vulkan driver: lavapipe needs the Debian packages mesa-vulkan-drivers "
-                           "and libvulkan1; docs/gl-backend.md, \"Drivers\")"
+                           "and libvulkan1, and Mesa 22.3's zink takes a CPU Vulkan device only with "
+                           "LIBGL_ALWAYS_SOFTWARE=1; docs/gl-backend.md, \"Drivers\")"
                          : " (the driver could not create its screen)");
       fail("eglInitialize on the " + s.platform + " platform failed" + why);
     }

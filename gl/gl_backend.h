@@ -67,6 +67,9 @@ struct GlOptions {
 //   framebuffer_binds = render_target_changes + redundant_render_target_binds (one glBindFramebuffer
 //   per SetRenderTarget).
 // The rest mirror no command: calls that pin GL to the oracle's choices (docs/gl-backend.md).
+// The names are the 4.5 path's calls; the 3.3 path counts its equivalents the same way
+// (glBindTexture, glBindBuffer, glUniform4fv, ...), except that it re-specifies vertex attribute
+// pointers before a draw without counting them (vertex_stride_rebinds stays 0 there).
 struct GlCallCounts {
   uint64_t draw_calls = 0;           // glDrawArrays / glDrawElements
   uint64_t texture_binds = 0;        // glBindTextureUnit

@@ -197,7 +197,13 @@ TEST(GlBackend, TheContextIsLlvmpipeWithOpenGl45Core) {
   EXPECT_EQ(i.version.rfind("4.5 (Core Profile)", 0), 0u) << i.version;
   EXPECT_FALSE(i.mesaVersion.empty()) << i.version;
   EXPECT_EQ(i.glslVersion, "4.50");
+  EXPECT_EQ(i.driver, "llvmpipe");
+  EXPECT_EQ(i.contextVersion, 45);
+  EXPECT_EQ(i.glslDialect, "450 core");
+  // llvmpipe snaps to 1/256 px (its FIXED_ORDER 8), which the oracle's EDGE_TIE assumes.
+  EXPECT_EQ(i.limits.subpixelBits, 8);
   const auto j = i.toJson();
+  EXPECT_EQ(j.at("context_version"), "4.5");
   EXPECT_TRUE(j.at("env").contains("LP_NUM_THREADS"));
   EXPECT_TRUE(j.at("cpu_caps").contains("avx2"));
   std::printf("[ context  ] %s\n", j.dump().c_str());
