@@ -89,7 +89,7 @@ SharedDisplay& shared() {
   return s;
 }
 
-EGLDisplay openDisplay(std::string& platform) {
+EGLDisplay openDisplay(const std::string& wanted, std::string& platform) {
   // Client extensions are queried on EGL_NO_DISPLAY (EGL_EXT_client_extensions).
   const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   if (client == nullptr || *client == '\0')
@@ -99,14 +99,16 @@ EGLDisplay openDisplay(std::string& platform) {
   if (!hasExtension(client, "EGL_EXT_platform_base") || getPlatformDisplay == nullptr)
     fail("EGL_EXT_platform_base is not supported (client extensions: " + std::string(client) + ")");
   // The surfaceless platform needs no window system and no DRM device (docs/gl-backend.md, "EGL setup").
-  if (hasExtension(client, "EGL_MESA_platform_surfaceless")) {
+  if (wanted != "device" && hasExtension(client, "EGL_MESA_platform_surfaceless")) {
     EGLDisplay d = getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     if (d != EGL_NO_DISPLAY) {
       platform = "surfaceless";
       return d;
     }
   }
-  // Fallback: the first EGL device (llvmpipe exposes one software device).
+  if (wanted == "surfaceless") fail("--egl-platform surfaceless: EGL_MESA_platform_surfaceless gave no display");
+  // Fallback, and the platform of vendor drivers (NVIDIA, AMD, Intel) that have no surfaceless
+  // platform: the first EGL device (Mesa's software device here).
   if (hasExtension(client, "EGL_EXT_platform_device") && hasExtension(client, "EGL_EXT_device_enumeration")) {
     auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
     EGLDeviceEXT devices[8];
@@ -119,23 +121,41 @@ EGLDisplay openDisplay(std::string& platform) {
       }
     }
   }
+  if (wanted == "device") fail("--egl-platform device: EGL_EXT_platform_device gave no display");
   fail("no headless EGL platform: neither EGL_MESA_platform_surfaceless nor EGL_EXT_platform_device gave a display");
 }
 
-EGLDisplay acquireDisplay(GlInfo& info) {
+EGLDisplay acquireDisplay(const ContextRequest& request, GlInfo& info) {
   SharedDisplay& s = shared();
   std::lock_guard lock(s.mutex);
   if (s.display == EGL_NO_DISPLAY) {
     s.env = readRecordedEnv();
-    EGLDisplay d = openDisplay(s.platform);
+    EGLDisplay d = openDisplay(request.eglPlatform, s.platform);
     EGLint major = 0, minor = 0;
-    if (!eglInitialize(d, &major, &minor)) fail("eglInitialize on the " + s.platform + " platform failed");
+    if (!eglInitialize(d, &major, &minor)) {
+      // zink needs a Vulkan driver (lavapipe: Debian's mesa-vulkan-drivers, and libvulkan1), and Mesa
+      // 22.3's zink skips CPU devices unless LIBGL_ALWAYS_SOFTWARE=1; otherwise it fails to create the
+      // screen and eglInitialize reports EGL_NOT_INITIALIZED. The backend does not set that variable.
+      const std::string why =
+          request.driver.empty()
+              ? std::string()
+              : " with GALLIUM_DRIVER=" + request.driver +
+                    (request.driver == "zink"
+                         ? " (zink runs on a Vulkan driver: lavapipe needs the Debian packages mesa-vulkan-drivers "
+                           "and libvulkan1, and Mesa 22.3's zink takes a CPU Vulkan device only with "
+                           "LIBGL_ALWAYS_SOFTWARE=1; docs/gl-backend.md, \"Drivers\")"
+                         : " (the driver could not create its screen)");
+      fail("eglInitialize on the " + s.platform + " platform failed" + why);
+    }
     s.display = d;
     const char* v = eglQueryString(d, EGL_VERSION);
     const char* vd = eglQueryString(d, EGL_VENDOR);
     s.version = v ? v : "";
     s.vendor = vd ? vd : "";
   }
+  if (!request.eglPlatform.empty() && request.eglPlatform != s.platform)
+    throw Error("GL backend: --egl-platform " + request.eglPlatform + " was asked for, but this process already uses the " +
+                s.platform + " platform (one EGL display per process)");
   info.eglPlatform = s.platform;
   info.eglVersion = s.version;
   info.eglVendor = s.vendor;
@@ -148,11 +168,37 @@ std::string glString(GLenum name) {
   return s ? reinterpret_cast<const char*>(s) : "";
 }
 
+// A context of `major`.`minor` core, or EGL_NO_CONTEXT (the EGL error stays pending).
+EGLContext createContext(EGLDisplay dpy, EGLConfig config, int major, int minor, bool debug) {
+  // EGL_CONTEXT_FLAGS_KHR (EGL_KHR_create_context) rather than the EGL 1.5 EGL_CONTEXT_OPENGL_DEBUG
+  // token, which displays that report EGL 1.4 reject with EGL_BAD_ATTRIBUTE.
+  const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                   major,
+                                   EGL_CONTEXT_MINOR_VERSION,
+                                   minor,
+                                   EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                   EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                   EGL_CONTEXT_FLAGS_KHR,
+                                   debug ? EGL_CONTEXT_OPENGL_DEBUG_BIT_KHR : 0,
+                                   EGL_NONE};
+  return eglCreateContext(dpy, config, EGL_NO_CONTEXT, contextAttribs);
+}
+
+GLint getInt(GLenum name) {
+  GLint v = 0;
+  glGetIntegerv(name, &v);
+  return v;
+}
+
 }  // namespace
 
-std::unique_ptr<EglContext> EglContext::create(bool debug) {
+std::unique_ptr<EglContext> EglContext::create(const ContextRequest& request) {
+  if (request.glVersion != 0 && request.glVersion != 45 && request.glVersion != 33)
+    throw Error("GL backend: GL version " + std::to_string(request.glVersion) + " is not supported (0, 45 or 33)");
+  if (!request.eglPlatform.empty() && request.eglPlatform != "surfaceless" && request.eglPlatform != "device")
+    throw Error("GL backend: EGL platform '" + request.eglPlatform + "' is not supported (surfaceless or device)");
   std::unique_ptr<EglContext> c(new EglContext());
-  EGLDisplay dpy = acquireDisplay(c->info_);
+  EGLDisplay dpy = acquireDisplay(request, c->info_);
   c->display_ = dpy;
 
   if (!eglBindAPI(EGL_OPENGL_API)) fail("eglBindAPI(EGL_OPENGL_API) failed");
@@ -177,34 +223,56 @@ std::unique_ptr<EglContext> EglContext::create(bool debug) {
   if (!eglChooseConfig(dpy, configAttribs, &config, 1, &count)) fail("eglChooseConfig failed");
   if (count < 1) throw Error(std::string("GL backend: eglChooseConfig found no RGBA8 pbuffer OpenGL config") + kHint);
 
-  // EGL_CONTEXT_FLAGS_KHR (EGL_KHR_create_context) rather than the EGL 1.5 EGL_CONTEXT_OPENGL_DEBUG
-  // token, which displays that report EGL 1.4 reject with EGL_BAD_ATTRIBUTE.
-  const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
-                                   4,
-                                   EGL_CONTEXT_MINOR_VERSION,
-                                   5,
-                                   EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                   EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                   EGL_CONTEXT_FLAGS_KHR,
-                                   debug ? EGL_CONTEXT_OPENGL_DEBUG_BIT_KHR : 0,
-                                   EGL_NONE};
-  EGLContext ctx = eglCreateContext(dpy, config, EGL_NO_CONTEXT, contextAttribs);
-  if (ctx == EGL_NO_CONTEXT) fail("eglCreateContext for OpenGL 4.5 core failed");
+  // 4.5 core first; a driver that offers less refuses it with EGL_BAD_MATCH (softpipe in Mesa 22.3
+  // offers 3.3 core), and then 3.3 core is the path unless 4.5 was demanded.
+  int path = request.glVersion == 33 ? 33 : 45;
+  EGLContext ctx = createContext(dpy, config, path / 10, path % 10, request.debug);
+  if (ctx == EGL_NO_CONTEXT && request.glVersion == 0) {
+    eglGetError();  // the 4.5 refusal; the 3.3 attempt reports its own
+    path = 33;
+    ctx = createContext(dpy, config, 3, 3, request.debug);
+  }
+  if (ctx == EGL_NO_CONTEXT)
+    fail(std::string("eglCreateContext for OpenGL ") + (path == 45 ? "4.5" : "3.3") + " core failed" +
+         (request.glVersion == 0 ? " (4.5 core was refused too)" : ""));
   c->context_ = ctx;
   if (!eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx))
     fail("eglMakeCurrent with EGL_NO_SURFACE failed (EGL_KHR_surfaceless_context missing?)");
 
-  GLint major = 0, minor = 0;
-  glGetIntegerv(GL_MAJOR_VERSION, &major);
-  glGetIntegerv(GL_MINOR_VERSION, &minor);
+  const GLint major = getInt(GL_MAJOR_VERSION), minor = getInt(GL_MINOR_VERSION);
   GlInfo& i = c->info_;
   i.vendor = glString(GL_VENDOR);
   i.renderer = glString(GL_RENDERER);
   i.version = glString(GL_VERSION);
   i.glslVersion = glString(GL_SHADING_LANGUAGE_VERSION);
-  if (i.version.empty() || major * 10 + minor < 45)
-    throw Error("GL backend: the context reports GL_VERSION '" + i.version + "'; OpenGL 4.5 core is required" + kHint);
+  if (i.version.empty() || major * 10 + minor < path)
+    throw Error("GL backend: the context reports GL_VERSION '" + i.version + "'; OpenGL " +
+                (path == 45 ? "4.5" : "3.3") + " core is required" + kHint);
+  i.contextVersion = path;
   i.mesaVersion = parseMesaVersion(i.version);
+  i.driver = parseDriver(i.renderer);
+  i.requestedDriver = request.driver;
+  // GALLIUM_DRIVER is only a request: a driver that is missing or fails falls back (or a display
+  // initialised earlier in the process keeps its driver), so the context must name the driver.
+  if (!request.driver.empty() && i.driver != request.driver)
+    throw Error("GL backend: the driver " + request.driver + " was asked for (GALLIUM_DRIVER=" + request.driver +
+                "), but the context reports GL_RENDERER '" + i.renderer + "' (driver " + i.driver +
+                "): Mesa ignored the request, or this process initialised its EGL display with another driver earlier");
+  for (GLint k = 0, n = getInt(GL_NUM_EXTENSIONS); k < n; ++k) {
+    const GLubyte* e = glGetStringi(GL_EXTENSIONS, GLuint(k));
+    if (e != nullptr) c->extensions_.insert(reinterpret_cast<const char*>(e));
+  }
+  GlLimits& l = i.limits;
+  l.subpixelBits = getInt(GL_SUBPIXEL_BITS);
+  glGetFloatv(GL_MAX_TEXTURE_LOD_BIAS, &l.maxTextureLodBias);
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, l.maxViewportDims);
+  if (major * 10 + minor >= 41 || c->hasExtension("GL_ARB_viewport_array"))
+    glGetFloatv(GL_VIEWPORT_BOUNDS_RANGE, l.viewportBoundsRange);
+  l.maxClipDistances = getInt(GL_MAX_CLIP_DISTANCES);
+  l.maxTextureBufferSize = getInt(GL_MAX_TEXTURE_BUFFER_SIZE);
+  l.maxArrayTextureLayers = getInt(GL_MAX_ARRAY_TEXTURE_LAYERS);
+  l.maxTextureSize = getInt(GL_MAX_TEXTURE_SIZE);
+  l.maxColorAttachments = getInt(GL_MAX_COLOR_ATTACHMENTS);
   GLint flags = 0;
   glGetIntegerv(GL_CONTEXT_FLAGS, &flags);
   i.debugContext = (flags & GL_CONTEXT_FLAG_DEBUG_BIT) != 0;

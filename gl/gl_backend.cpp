@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <string>
 
 #include "gl/egl_context.h"
@@ -67,6 +68,11 @@ struct GlBackend::Impl {
   std::vector<LinkedProgram> programs;  // indexed by id; name 0 = not a program
   GLuint vao = 0;
   GLint maxRelativeOffset = 0, maxStride = 0;
+  // The 4.5 path (DSA); false: the 3.3 core path, through bind points (docs/gl-backend.md).
+  bool dsa = true;
+  // 3.3 path: glVertexAttribPointer captures the buffer and stride, so the attribute pointers are
+  // specified at the next draw after BindVertexBuffer or SetVertexLayout changed them.
+  bool attribsDirty = false;
 
   // Replay state of the current frame.
   std::array<ResourceId, kMaxTextureUnits> unitTexture{};
@@ -111,8 +117,7 @@ struct GlBackend::Impl {
     // Unbind first, so deletion is immediate rather than deferred until unbound (GL 4.6 §5.1.2-3).
     glUseProgram(0);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-    glBindTextures(0, kMaxTextureUnits, nullptr);
-    glBindSamplers(0, kMaxTextureUnits, nullptr);
+    unbindAllUnits(dsa);
     glBindVertexArray(0);
     for (const LinkedProgram& p : programs) compiler.recycle(p);  // kept for the next frame's JIT cache
     programs.clear();
@@ -137,10 +142,15 @@ struct GlBackend::Impl {
     clipMask = 0;
     target = {};
     targetBound = false;
+    attribsDirty = false;
     // A fresh vertex array: every attribute disabled (reads (0, 0, 0, 1), GL 4.6 §10.2), no buffers.
-    glCreateVertexArrays(1, &vao);
+    if (dsa) {
+      glCreateVertexArrays(1, &vao);
+    } else {
+      glGenVertexArrays(1, &vao);
+    }
     glBindVertexArray(vao);
-    resetFrameState();
+    resetFrameState(dsa);
   }
 
   // --- commands ---------------------------------------------------------------------------------
@@ -161,10 +171,10 @@ struct GlBackend::Impl {
     const GlTexture* t = res.texture(c.texture);
     const GLenum newTarget = t ? t->target : GL_NONE;
     if (t != nullptr && unitTarget[c.unit] != GL_NONE && unitTarget[c.unit] != newTarget) {
-      glBindTextureUnit(c.unit, 0);
+      bindTextureOnUnit(dsa, int(c.unit), GL_NONE, 0);
       ++counts.texture_unit_resets;
     }
-    glBindTextureUnit(c.unit, t ? t->name : 0);
+    bindTextureOnUnit(dsa, int(c.unit), newTarget, t ? t->name : 0);
     ++counts.texture_binds;
     unitTarget[c.unit] = newTarget;
     unitTexture[c.unit] = t ? c.texture : kNone;
@@ -186,17 +196,27 @@ struct GlBackend::Impl {
     float values[kMaxUniformSlots * 4];
     const auto src = l.bytes(c.data);
     std::memcpy(values, src.data(), std::min(src.size(), sizeof values));  // the blob may be unaligned
-    glProgramUniform4fv(programs[program].name, GLint(c.slot), GLsizei(c.count), values);
+    const LinkedProgram& p = programs[program];
+    uniform4fv(dsa, p.name, p.slotLocation(c.slot), GLsizei(c.count), values);  // p is the current program
     ++counts.uniform_updates;
   }
   void apply(const CommandList&, const BindVertexBuffer& c) {
-    glVertexArrayVertexBuffer(vao, 0, res.buffer(c.buffer), 0, GLsizei(layout.stride));
+    if (dsa) {
+      glVertexArrayVertexBuffer(vao, 0, res.buffer(c.buffer), 0, GLsizei(layout.stride));
+    } else {
+      glBindBuffer(GL_ARRAY_BUFFER, res.buffer(c.buffer));
+      attribsDirty = true;
+    }
     ++counts.vertex_buffer_binds;
     vertexBuffer = c.buffer;
     boundStride = layout.stride;
   }
   void apply(const CommandList&, const SetVertexLayout& c) {
     layout = c.layout;
+    if (!dsa) {
+      attribsDirty = true;
+      return;
+    }
     if (layout.stride > uint32_t(maxStride))
       throw Error(where() + ": stride " + std::to_string(layout.stride) + " exceeds GL_MAX_VERTEX_ATTRIB_STRIDE (" +
                   std::to_string(maxStride) + ")");
@@ -228,7 +248,11 @@ struct GlBackend::Impl {
     }
   }
   void apply(const CommandList&, const BindIndexBuffer& c) {
-    glVertexArrayElementBuffer(vao, res.buffer(c.buffer));
+    if (dsa) {
+      glVertexArrayElementBuffer(vao, res.buffer(c.buffer));
+    } else {
+      glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, res.buffer(c.buffer));  // VAO state (GL 3.3 §2.10)
+    }
     ++counts.index_buffer_binds;
     indexType = c.type;
   }
@@ -255,11 +279,19 @@ struct GlBackend::Impl {
     // layered attachment (GL 4.6 §17.4.3, §9.8), as the oracle does (F5).
     if (FramebufferCache::setDrawMask(*fb, uint8_t(fb->drawMask | (1u << c.attachment)))) ++counts.draw_buffer_changes;
     if (isInteger(fb->colorFormat[c.attachment])) {
-      glClearNamedFramebufferuiv(fb->name, GL_COLOR, GLint(c.attachment), c.bits.data());
+      if (dsa) {
+        glClearNamedFramebufferuiv(fb->name, GL_COLOR, GLint(c.attachment), c.bits.data());
+      } else {
+        glClearBufferuiv(GL_COLOR, GLint(c.attachment), c.bits.data());  // fb is the bound draw framebuffer
+      }
     } else {
       float v[4];
       std::memcpy(v, c.bits.data(), sizeof v);
-      glClearNamedFramebufferfv(fb->name, GL_COLOR, GLint(c.attachment), v);
+      if (dsa) {
+        glClearNamedFramebufferfv(fb->name, GL_COLOR, GLint(c.attachment), v);
+      } else {
+        glClearBufferfv(GL_COLOR, GLint(c.attachment), v);
+      }
     }
   }
   void apply(const CommandList&, const ClearDepth& c) {
@@ -267,11 +299,16 @@ struct GlBackend::Impl {
     // same value whatever ClearBuffer does with out-of-range depth.
     const float d = c.depth > 0.0f ? (c.depth < 1.0f ? c.depth : 1.0f) : 0.0f;
     // GL masks depth clears with glDepthMask (GL 4.6 §17.4.3) and so does the oracle (spec-choices F5).
-    glClearNamedFramebufferfv(fb->name, GL_DEPTH, 0, &d);
+    if (dsa) {
+      glClearNamedFramebufferfv(fb->name, GL_DEPTH, 0, &d);
+    } else {
+      glClearBufferfv(GL_DEPTH, 0, &d);
+    }
   }
   void apply(const CommandList&, const Draw& d) {
     LinkedProgram& p = programs[program];
     prepareDraw(p);
+    if (attribsDirty) specifyAttribs();
     if (d.indexed) {
       const uintptr_t offset = uintptr_t(d.first) * indexBytes(indexType);
       glDrawElements(GL_TRIANGLES, GLsizei(d.count), glIndexType(indexType), reinterpret_cast<const void*>(offset));
@@ -303,9 +340,33 @@ struct GlBackend::Impl {
     setInternal(p, p.clipMaskLocation, p.clipMaskSet, p.clipMask, clipMask);
   }
 
+  // 3.3 path, before a draw: the attribute pointers of the current layout into the bound
+  // GL_ARRAY_BUFFER (the buffer and stride are captured per attribute, GL 3.3 §2.8). Validation
+  // guarantees a vertex buffer before a draw that reads attributes.
+  void specifyAttribs() {
+    attribsDirty = false;
+    std::array<bool, kMaxAttribs> enabled{};
+    if (vertexBuffer != kNone) {
+      for (const VertexAttrib& a : layout.attribs) {
+        if (a.components == 0 || a.location >= kMaxAttribs) continue;
+        // U32 as float, not normalized (V7), as glVertexArrayAttribFormat on the 4.5 path.
+        glVertexAttribPointer(a.location, a.components, a.type == AttribType::U32 ? GL_UNSIGNED_INT : GL_FLOAT,
+                              GL_FALSE, GLsizei(layout.stride), reinterpret_cast<const void*>(uintptr_t(a.offset)));
+        enabled[a.location] = true;
+      }
+    }
+    for (GLuint loc = 0; loc < GLuint(kMaxAttribs); ++loc) {
+      if (enabled[loc]) {
+        glEnableVertexAttribArray(loc);
+      } else {
+        glDisableVertexAttribArray(loc);  // reads the current value (0, 0, 0, 1)
+      }
+    }
+  }
+
   void setInternal(const LinkedProgram& p, GLint location, bool& set, uint32_t& held, uint32_t value) {
     if (location < 0 || (set && held == value)) return;
-    glProgramUniform1ui(p.name, location, value);
+    uniform1ui(dsa, p.name, location, value);  // p is the current program (a draw is being prepared)
     ++counts.internal_uniform_updates;
     held = value;
     set = true;
@@ -361,14 +422,42 @@ std::unique_ptr<GlBackend> GlBackend::create(const GlOptions& options) {
     addEnvFlag("LP_DEBUG", "no_fastpath");
     addEnvFlag("GALLIVM_PERF", "no_aos_sampling");
   }
+  if (!options.driver.empty()) {
+    if (options.driver != "llvmpipe" && options.driver != "softpipe" && options.driver != "zink")
+      throw Error("GL backend: driver '" + options.driver + "' is not supported (llvmpipe, softpipe or zink)");
+    // Mesa's Gallium software loader reads GALLIUM_DRIVER; zink is a DRI driver of its own, which the
+    // loader picks only with MESA_LOADER_DRIVER_OVERRIDE (docs/gl-backend.md, "Drivers").
+    setenv("GALLIUM_DRIVER", options.driver.c_str(), 1);
+    if (options.driver == "zink") setenv("MESA_LOADER_DRIVER_OVERRIDE", "zink", 1);
+  }
   std::unique_ptr<GlBackend> b(new GlBackend());
   Impl& m = *b->impl_;
   m.options = options;
-  m.context = EglContext::create(options.debug);
-  if (options.debug) m.debugLog.install();
-  pinContextState();
-  glGetIntegerv(GL_MAX_VERTEX_ATTRIB_RELATIVE_OFFSET, &m.maxRelativeOffset);
-  glGetIntegerv(GL_MAX_VERTEX_ATTRIB_STRIDE, &m.maxStride);
+  m.context = EglContext::create({options.debug, options.glVersion, options.eglPlatform, options.driver});
+  EglContext& ctx = *m.context;
+  m.dsa = ctx.info().contextVersion == 45;
+  GlslDialect dialect;
+  dialect.core450 = m.dsa;
+  dialect.gpuShader5 = ctx.hasExtension("GL_ARB_gpu_shader5");
+  dialect.fp64 = ctx.hasExtension("GL_ARB_gpu_shader_fp64");
+  dialect.derivativeControl = ctx.hasExtension("GL_ARB_derivative_control");
+  dialect.languagePack420 = ctx.hasExtension("GL_ARB_shading_language_420pack");
+  ctx.info().glslDialect = dialect.name();
+  ctx.info().glslExtensions = dialect.extensions();
+  ctx.info().glslFallbacks = dialect.fallbacks();
+  m.compiler.configure(dialect, m.dsa, m.dsa || ctx.hasExtension("GL_ARB_program_interface_query"));
+  m.res.configure(m.dsa);
+  m.fbos.configure(m.dsa);
+  // KHR_debug is GL 4.3; a 3.3 context without it still checks glGetError after every command.
+  if (options.debug && (m.dsa || ctx.hasExtension("GL_KHR_debug"))) m.debugLog.install();
+  pinContextState(m.dsa);
+  if (m.dsa) {
+    glGetIntegerv(GL_MAX_VERTEX_ATTRIB_RELATIVE_OFFSET, &m.maxRelativeOffset);
+    glGetIntegerv(GL_MAX_VERTEX_ATTRIB_STRIDE, &m.maxStride);
+  } else {
+    // GL 3.3 has neither limit (both are GL 4.3 / 4.4): glVertexAttribPointer takes any GLsizei stride.
+    m.maxRelativeOffset = m.maxStride = std::numeric_limits<GLint>::max();
+  }
   if (const std::string errors = drainErrors(); !errors.empty())
     throw Error("GL backend: context set-up raised " + errors);
   return b;
@@ -408,10 +497,19 @@ std::vector<uint8_t> GlBackend::readImage(const PresentedImage& image) const {
   const size_t row = size_t(d.width) * texelBytes(d.format);
   std::vector<uint8_t> gl(row * d.height);
   // glGetTextureSubImage reads one layer of one level straight from the texture (GL 4.6 §8.11.4),
-  // rows bottom first with GL_PACK_ALIGNMENT 1.
-  glGetTextureSubImage(t.name, GLint(image.level), 0, 0,
-                       t.desc.kind == TextureKind::Tex2DArray ? GLint(image.layer) : 0, GLsizei(d.width),
-                       GLsizei(d.height), 1, f.format, f.type, GLsizei(gl.size()), gl.data());
+  // rows bottom first with GL_PACK_ALIGNMENT 1. GL 3.3 reads whole levels only (glGetTexImage, every
+  // layer of an array), on the scratch unit.
+  if (impl_->dsa) {
+    glGetTextureSubImage(t.name, GLint(image.level), 0, 0,
+                         t.desc.kind == TextureKind::Tex2DArray ? GLint(image.layer) : 0, GLsizei(d.width),
+                         GLsizei(d.height), 1, f.format, f.type, GLsizei(gl.size()), gl.data());
+  } else {
+    const bool array = t.desc.kind == TextureKind::Tex2DArray;
+    std::vector<uint8_t> all(gl.size() * (array ? t.desc.layers : 1));
+    glBindTexture(t.target, t.name);
+    glGetTexImage(t.target, GLint(image.level), f.format, f.type, all.data());
+    std::memcpy(gl.data(), all.data() + (array ? gl.size() * image.layer : 0), gl.size());
+  }
   if (const std::string errors = drainErrors(); !errors.empty())
     throw Error("GL backend: reading texture " + std::to_string(image.texture) + " raised " + errors);
   // imagePixels() order: top row first.

@@ -1,5 +1,6 @@
-// The GL backend: replays a CommandList through OpenGL 4.5 core on a headless EGL context (Mesa
-// llvmpipe here), so every frame the oracle renders can be compared with GL pixel by pixel.
+// The GL backend: replays a CommandList through OpenGL 4.5 core with DSA, or OpenGL 3.3 core with
+// bind points where 4.5 is absent, on a headless EGL context (Mesa llvmpipe or softpipe here), so
+// every frame the oracle renders can be compared with GL pixel by pixel.
 //
 // Implements: execution of every command kind of command_list.h with GL calls that mirror the
 // oracle's semantics (docs/spec-choices.md); where GL leaves a choice open, the backend pins GL to
@@ -24,6 +25,7 @@
 #include <cstdint>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -46,6 +48,16 @@ struct GlOptions {
   bool debug = false;
   // execute() refuses a list over limits.frameBytes before creating any GL object (raster/validate.h).
   ResourceLimits limits;
+  // The Gallium driver: "" = Mesa's default (llvmpipe here), "llvmpipe", "softpipe" or "zink". Set as
+  // GALLIUM_DRIVER (zink also MESA_LOADER_DRIVER_OVERRIDE=zink) before the EGL display initialises;
+  // create() throws when the context's GL_RENDERER names another driver, naming both.
+  std::string driver;
+  // 0 = OpenGL 4.5 core, else 3.3 core when the driver offers no 4.5; 45 or 33 forces that path (33
+  // runs the 3.3 path even on a driver that returns a 4.5 context). GlInfo::contextVersion says which.
+  int glVersion = 0;
+  // The EGL platform: "" = surfaceless, else device; "surfaceless" or "device" (EGL_EXT_platform_device,
+  // the platform of NVIDIA / AMD / Intel drivers, which have no surfaceless platform) forces one.
+  std::string eglPlatform;
 };
 
 // GL calls issued by the last execute(). The first eight mirror commands one to one, so for a valid
@@ -55,6 +67,9 @@ struct GlOptions {
 //   framebuffer_binds = render_target_changes + redundant_render_target_binds (one glBindFramebuffer
 //   per SetRenderTarget).
 // The rest mirror no command: calls that pin GL to the oracle's choices (docs/gl-backend.md).
+// The names are the 4.5 path's calls; the 3.3 path counts its equivalents the same way
+// (glBindTexture, glBindBuffer, glUniform4fv, ...), except that it re-specifies vertex attribute
+// pointers before a draw without counting them (vertex_stride_rebinds stays 0 there).
 struct GlCallCounts {
   uint64_t draw_calls = 0;           // glDrawArrays / glDrawElements
   uint64_t texture_binds = 0;        // glBindTextureUnit
@@ -83,7 +98,8 @@ struct GlImageDesc {
 class GlBackend {
  public:
   // Sets the environment from `options`, creates the EGL context and compiles nothing yet (twins
-  // are compiled on first use). Throws Error with a clear message when EGL or GL 4.5 is unavailable.
+  // are compiled on first use). Throws Error with a clear message when EGL or the GL version is
+  // unavailable, or when the context is not the driver options.driver asked for.
   static std::unique_ptr<GlBackend> create(const GlOptions& options = {});
   ~GlBackend();
   GlBackend(const GlBackend&) = delete;

@@ -9,7 +9,8 @@ namespace tessera::gl {
 const std::vector<std::string_view>& recordedEnvNames() {
   // LP_NUM_THREADS: rasterizer threads. GALLIUM_OVERRIDE_CPU_CAPS / LP_NATIVE_VECTOR_WIDTH: the ISA
   // and vector width llvmpipe generates code for. LP_PERF / LP_DEBUG / GALLIVM_PERF: fast-path
-  // switches (GlOptions::strict). EGL_PLATFORM: would redirect eglGetDisplay (not used, recorded).
+  // switches (GlOptions::strict). GALLIUM_DRIVER / MESA_LOADER_DRIVER_OVERRIDE: the driver
+  // (GlOptions::driver). EGL_PLATFORM: would redirect eglGetDisplay (not used, recorded).
   static const std::vector<std::string_view> names = {"LP_NUM_THREADS",
                                                       "GALLIUM_OVERRIDE_CPU_CAPS",
                                                       "LP_NATIVE_VECTOR_WIDTH",
@@ -17,8 +18,15 @@ const std::vector<std::string_view>& recordedEnvNames() {
                                                       "LP_DEBUG",
                                                       "GALLIVM_PERF",
                                                       "GALLIUM_DRIVER",
+                                                      "MESA_LOADER_DRIVER_OVERRIDE",
                                                       "EGL_PLATFORM"};
   return names;
+}
+
+std::string parseDriver(std::string_view renderer) {
+  size_t e = 0;
+  while (e < renderer.size() && renderer[e] != ' ' && renderer[e] != '(') ++e;
+  return std::string(renderer.substr(0, e));
 }
 
 std::string parseMesaVersion(std::string_view glVersion) {
@@ -82,6 +90,22 @@ nlohmann::json GlInfo::toJson() const {
           {"gl_version", version},
           {"glsl_version", glslVersion},
           {"mesa_version", mesaVersion},
+          {"driver", driver},
+          {"requested_driver", requestedDriver},
+          {"context_version", contextVersion == 45 ? "4.5" : contextVersion == 33 ? "3.3" : ""},
+          {"glsl_dialect", glslDialect},
+          {"glsl_extensions", glslExtensions},
+          {"glsl_fallbacks", glslFallbacks},
+          {"limits",
+           {{"subpixel_bits", limits.subpixelBits},
+            {"max_texture_lod_bias", limits.maxTextureLodBias},
+            {"max_viewport_dims", {limits.maxViewportDims[0], limits.maxViewportDims[1]}},
+            {"viewport_bounds_range", {limits.viewportBoundsRange[0], limits.viewportBoundsRange[1]}},
+            {"max_clip_distances", limits.maxClipDistances},
+            {"max_texture_buffer_size", limits.maxTextureBufferSize},
+            {"max_array_texture_layers", limits.maxArrayTextureLayers},
+            {"max_texture_size", limits.maxTextureSize},
+            {"max_color_attachments", limits.maxColorAttachments}}},
           {"debug_context", debugContext},
           {"env", e},
           {"cpu_caps",

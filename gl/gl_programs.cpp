@@ -30,12 +30,15 @@ std::string programLog(GLuint program) {
 
 GLuint compile(std::string_view name, std::string_view text, GLenum stage, const char* define, const char* label) {
   // The first line must be the #version directive: it has to precede everything else in the
-  // shader (GLSL 4.50 §3.3), so the stage define goes right after it.
-  const size_t eol = text.find('\n');
+  // shader (GLSL 4.50 §3.3), so the stage define goes right after it, and after the #extension
+  // lines the 3.3 rewrite adds (they too must precede every other token, GLSL 3.30 §3.3).
+  size_t eol = text.find('\n');
   const std::string_view first = text.substr(0, eol);
-  if (first.rfind("#version 450 core", 0) != 0 || eol == std::string_view::npos)
+  if ((first.rfind("#version 450 core", 0) != 0 && first.rfind("#version 330 core", 0) != 0) ||
+      eol == std::string_view::npos)
     throw Error(fileOf(name) + ": the first line must be '#version 450 core'");
-  const std::string header = std::string(first) + "\n#define " + define + " 1\n#line 2\n";
+  while (text.substr(eol + 1).rfind("#extension ", 0) == 0) eol = text.find('\n', eol + 1);
+  const std::string header = std::string(text.substr(0, eol)) + "\n#define " + define + " 1\n#line 2\n";
   const std::string_view body = text.substr(eol + 1);
   const GLchar* strings[2] = {header.data(), body.data()};
   const GLint lengths[2] = {GLint(header.size()), GLint(body.size())};
@@ -52,7 +55,33 @@ GLuint compile(std::string_view name, std::string_view text, GLenum stage, const
   return s;
 }
 
+// Runs `f` with `program` current and restores the previous program (3.3 path: no glProgramUniform).
+template <class F>
+void withProgram(GLuint program, F f) {
+  GLint previous = 0;
+  glGetIntegerv(GL_CURRENT_PROGRAM, &previous);
+  if (GLuint(previous) != program) glUseProgram(program);
+  f();
+  if (GLuint(previous) != program) glUseProgram(GLuint(previous));
+}
+
 }  // namespace
+
+void uniform4fv(bool dsa, GLuint program, GLint location, GLsizei count, const float* values) {
+  if (dsa) {
+    glProgramUniform4fv(program, location, count, values);
+  } else {
+    glUniform4fv(location, count, values);
+  }
+}
+
+void uniform1ui(bool dsa, GLuint program, GLint location, GLuint value) {
+  if (dsa) {
+    glProgramUniform1ui(program, location, value);
+  } else {
+    glUniform1ui(location, value);
+  }
+}
 
 ProgramCompiler::~ProgramCompiler() = default;  // release() runs while the context is current
 
@@ -83,7 +112,11 @@ LinkedProgram ProgramCompiler::acquire(std::string_view name, uint64_t& resetCal
   // Back to the state of a fresh link: u[64] all zero (GL 4.6 §7.6: uniforms start at 0), and the
   // backend's own uniforms unknown, so they are set again before the next draw.
   static const float zeros[kMaxUniformSlots * 4] = {};
-  glProgramUniform4fv(p.name, 0, kMaxUniformSlots, zeros);
+  if (dsa_) {
+    glProgramUniform4fv(p.name, 0, kMaxUniformSlots, zeros);
+  } else if (p.slotLocation(0) >= 0) {
+    withProgram(p.name, [&] { glUniform4fv(p.slotLocation(0), kMaxUniformSlots, zeros); });
+  }
   ++resetCalls;
   p.layerLimitSet = p.boundUnitsSet = p.clipMaskSet = false;
   return p;
@@ -96,10 +129,13 @@ void ProgramCompiler::recycle(const LinkedProgram& p) {
 
 const ProgramCompiler::Stages& ProgramCompiler::stages(std::string_view name) {
   if (auto it = cache_.find(name); it != cache_.end()) return it->second;
-  const std::string_view text = glslSource(name);
-  if (text.empty())
+  const std::string_view twin = glslSource(name);
+  if (twin.empty())
     throw Error("program \"" + std::string(name) + "\" has no GLSL twin (" + fileOf(name) + " is not embedded)");
+  RewrittenTwin rewritten = rewriteTwin(fileOf(name), twin, dialect_);
+  const std::string_view text = rewritten.text;
   Stages s;
+  s.samplerUnits = std::move(rewritten.samplerUnits);
   try {
     s.vs = compile(name, text, GL_VERTEX_SHADER, "TESSERA_VERTEX_SHADER", "vertex");
     if (text.find("#ifdef TESSERA_GEOMETRY_SHADER") != std::string_view::npos)
@@ -142,8 +178,10 @@ LinkedProgram ProgramCompiler::link(std::string_view name) {
   }
   // The twin must write exactly the C++ program's colour outputs: the backend masks draw buffers
   // by this number, as the oracle writes only attachments < colorOutputs().
-  GLint outputs = 0;
-  glGetProgramInterfaceiv(p.name, GL_PROGRAM_OUTPUT, GL_ACTIVE_RESOURCES, &outputs);
+  // Without glGetProgramInterfaceiv (a 3.3 context without ARB_program_interface_query) the check
+  // is skipped; the 4.5 path always makes it.
+  GLint outputs = cpu->colorOutputs();
+  if (interfaceQuery_) glGetProgramInterfaceiv(p.name, GL_PROGRAM_OUTPUT, GL_ACTIVE_RESOURCES, &outputs);
   p.colorOutputs = cpu->colorOutputs();
   if (outputs != p.colorOutputs) {
     glDeleteProgram(p.name);
@@ -153,6 +191,19 @@ LinkedProgram ProgramCompiler::link(std::string_view name) {
   p.layerLimitLocation = glGetUniformLocation(p.name, kLayerLimitUniform);
   p.boundUnitsLocation = glGetUniformLocation(p.name, kBoundUnitsUniform);
   p.clipMaskLocation = glGetUniformLocation(p.name, kClipMaskUniform);
+  if (!dsa_) {
+    // GLSL 3.30 has no explicit uniform locations or sampler bindings (GL 4.3 / 4.2): ask for each
+    // slot's location and set each sampler's unit once; both are program state, kept on reuse.
+    p.slotLocations.resize(kMaxUniformSlots);
+    for (uint32_t k = 0; k < uint32_t(kMaxUniformSlots); ++k)
+      p.slotLocations[k] = glGetUniformLocation(p.name, ("u[" + std::to_string(k) + "]").c_str());
+    withProgram(p.name, [&] {
+      for (const auto& [sampler, unit] : s.samplerUnits) {
+        const GLint at = glGetUniformLocation(p.name, sampler.c_str());
+        if (at >= 0) glUniform1i(at, unit);
+      }
+    });
+  }
   return p;
 }
 

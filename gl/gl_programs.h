@@ -8,6 +8,11 @@
 // and `#line 2`, so compiler messages carry the file's own line numbers. A twin has a geometry
 // stage iff its text contains `#ifdef TESSERA_GEOMETRY_SHADER`.
 //
+// On the 3.3 core path (configure(dsa = false)) the twin is first rewritten to `#version 330 core`
+// (glsl_dialect.h): uniform slots then come from glGetUniformLocation("u[k]") and sampler units are
+// set with glUniform1i after linking; uniforms are written with glUniform* on the current program
+// instead of glProgramUniform*.
+//
 // Internal to gl/.
 #pragma once
 
@@ -18,6 +23,7 @@
 #include <vector>
 
 #include "gl/gl_api.h"
+#include "gl/glsl_dialect.h"
 #include "raster/program.h"
 
 namespace tessera::gl {
@@ -41,12 +47,28 @@ struct LinkedProgram {
   // not always what the backend wants, hence the flags).
   bool layerLimitSet = false, boundUnitsSet = false, clipMaskSet = false;
   uint32_t layerLimit = 0, boundUnits = 0, clipMask = 0;
+  // The location of u[k] (3.3 path: glGetUniformLocation, -1 beyond the array the linker kept);
+  // empty on the 4.5 path, where `layout(location = 0)` makes slot k location k.
+  std::vector<GLint> slotLocations;
+  GLint slotLocation(uint32_t slot) const { return slotLocations.empty() ? GLint(slot) : slotLocations[slot]; }
 };
+
+// glProgramUniform4fv / 1ui with DSA; otherwise glUniform4fv / 1ui, which write the current program:
+// the caller makes `program` current first (the replay only writes the program in use).
+void uniform4fv(bool dsa, GLuint program, GLint location, GLsizei count, const float* values);
+void uniform1ui(bool dsa, GLuint program, GLint location, GLuint value);
 
 class ProgramCompiler {
  public:
   ProgramCompiler() = default;
   ~ProgramCompiler();
+  // The dialect twins are compiled in, whether DSA entry points may be used, and whether the
+  // context has glGetProgramInterfaceiv (GL 4.3 / ARB_program_interface_query) to count outputs.
+  void configure(const GlslDialect& dialect, bool dsa, bool interfaceQuery) {
+    dialect_ = dialect;
+    dsa_ = dsa;
+    interfaceQuery_ = interfaceQuery;
+  }
   ProgramCompiler(const ProgramCompiler&) = delete;
   ProgramCompiler& operator=(const ProgramCompiler&) = delete;
 
@@ -67,11 +89,14 @@ class ProgramCompiler {
  private:
   struct Stages {
     GLuint vs = 0, gs = 0, fs = 0;
+    std::vector<std::pair<std::string, int>> samplerUnits;  // 3.3 path: set with glUniform1i after linking
   };
   const Stages& stages(std::string_view name);
   LinkedProgram link(std::string_view name);
   std::map<std::string, Stages, std::less<>> cache_;
   std::map<std::string, std::vector<LinkedProgram>, std::less<>> free_;
+  GlslDialect dialect_;
+  bool dsa_ = true, interfaceQuery_ = true;
 };
 
 }  // namespace tessera::gl

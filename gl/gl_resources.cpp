@@ -16,13 +16,22 @@ void FrameResources::grow(ResourceId id) {
   }
 }
 
+const uint8_t* FrameResources::zeros(size_t bytes) {
+  if (zeros_.size() < bytes) zeros_.assign(bytes, 0);
+  return zeros_.data();
+}
+
 void FrameResources::createTexture(ResourceId id, const TextureDesc& d) {
   grow(id);
   GlTexture& t = textures_[id];
   t.desc = d;
   t.target = glTarget(d.kind);
-  glCreateTextures(t.target, 1, &t.name);
   const GlFormat f = glFormat(d.format);
+  if (!dsa_) {
+    createTextureBound(t, f);
+    return;
+  }
+  glCreateTextures(t.target, 1, &t.name);
   if (d.kind == TextureKind::Buffer) {
     // GL 4.6 §8.9: the texels are the buffer's bytes, N = min(size / texelBytes, MAX_TEXTURE_BUFFER_SIZE),
     // the same N the oracle uses (sample.cpp fetchBase).
@@ -43,10 +52,43 @@ void FrameResources::createTexture(ResourceId id, const TextureDesc& d) {
   for (GLint l = 0; l < levels; ++l) glClearTexImage(t.name, l, f.format, f.type, nullptr);
 }
 
+// The 3.3 path of createTexture: the texture on the scratch unit's target, every level specified
+// with zeros (mutable storage, GL 3.3 §3.8.3; the oracle's storage starts zeroed).
+void FrameResources::createTextureBound(GlTexture& t, const GlFormat& f) {
+  const TextureDesc& d = t.desc;
+  glGenTextures(1, &t.name);
+  glBindTexture(t.target, t.name);  // kScratchUnit is the active unit between commands
+  if (d.kind == TextureKind::Buffer) {
+    glTexBuffer(GL_TEXTURE_BUFFER, f.internal, buffer(d.buffer));
+    return;
+  }
+  const uint8_t* z = zeros(size_t(d.width) * d.height * d.layers * texelBytes(d.format));
+  for (GLint l = 0; l < GLint(d.levels); ++l) {
+    const GLsizei w = GLsizei(levelWidth(d, uint32_t(l))), h = GLsizei(levelHeight(d, uint32_t(l)));
+    if (d.kind == TextureKind::Tex2DArray) {
+      glTexImage3D(GL_TEXTURE_2D_ARRAY, l, GLint(f.internal), w, h, GLsizei(d.layers), 0, f.format, f.type, z);
+    } else {
+      glTexImage2D(GL_TEXTURE_2D, l, GLint(f.internal), w, h, 0, f.format, f.type, z);
+    }
+  }
+  // Mutable storage is complete only up to GL_TEXTURE_MAX_LEVEL (default 1000): levels - 1.
+  glTexParameteri(t.target, GL_TEXTURE_MAX_LEVEL, GLint(d.levels) - 1);
+}
+
 void FrameResources::uploadTexture(const UploadTexture& u, std::span<const uint8_t> texels) {
   const GlTexture& t = textures_[u.id];
   const GlFormat f = glFormat(t.desc.format);
   const GLsizei w = GLsizei(levelWidth(t.desc, u.level)), h = GLsizei(levelHeight(t.desc, u.level));
+  if (!dsa_) {
+    glBindTexture(t.target, t.name);
+    if (t.desc.kind == TextureKind::Tex2DArray) {
+      glTexSubImage3D(GL_TEXTURE_2D_ARRAY, GLint(u.level), 0, 0, GLint(u.layer), w, h, 1, f.format, f.type,
+                      texels.data());
+    } else {
+      glTexSubImage2D(GL_TEXTURE_2D, GLint(u.level), 0, 0, w, h, f.format, f.type, texels.data());
+    }
+    return;
+  }
   // Rows bottom first and tightly packed: GL's order with GL_UNPACK_ALIGNMENT 1 (gl_state.cpp).
   if (t.desc.kind == TextureKind::Tex2DArray) {
     glTextureSubImage3D(t.name, GLint(u.level), 0, 0, GLint(u.layer), w, h, 1, f.format, f.type, texels.data());
@@ -57,6 +99,14 @@ void FrameResources::uploadTexture(const UploadTexture& u, std::span<const uint8
 
 void FrameResources::createBuffer(ResourceId id, uint64_t size) {
   grow(id);
+  if (!dsa_) {
+    // Binding creates the object (GL 3.3 §2.9); GL_COPY_WRITE_BUFFER disturbs no vertex or index
+    // binding. glBufferData with zeros: the oracle's buffers start zeroed.
+    glGenBuffers(1, &buffers_[id]);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, buffers_[id]);
+    glBufferData(GL_COPY_WRITE_BUFFER, GLsizeiptr(size), size ? zeros(size_t(size)) : nullptr, GL_DYNAMIC_DRAW);
+    return;
+  }
   glCreateBuffers(1, &buffers_[id]);
   // A zero-size buffer keeps GL's initial empty data store (glNamedBufferStorage rejects size 0), so
   // a buffer texture over it has 0 texels, like the oracle's.
@@ -68,13 +118,22 @@ void FrameResources::createBuffer(ResourceId id, uint64_t size) {
 
 void FrameResources::uploadBuffer(const UploadBuffer& u, std::span<const uint8_t> bytes) {
   if (bytes.empty()) return;
+  if (!dsa_) {
+    glBindBuffer(GL_COPY_WRITE_BUFFER, buffers_[u.id]);
+    glBufferSubData(GL_COPY_WRITE_BUFFER, GLintptr(u.offset), GLsizeiptr(bytes.size()), bytes.data());
+    return;
+  }
   glNamedBufferSubData(buffers_[u.id], GLintptr(u.offset), GLsizeiptr(bytes.size()), bytes.data());
 }
 
 void FrameResources::createSampler(ResourceId id, const SamplerState& s) {
   grow(id);
   GLuint& n = samplers_[id];
-  glCreateSamplers(1, &n);
+  if (dsa_) {
+    glCreateSamplers(1, &n);
+  } else {
+    glGenSamplers(1, &n);  // GL 3.3 §3.8.2: GenSamplers creates the objects
+  }
   // GL 4.6 §8.2, Table 23.18: every parameter the oracle's SamplerState holds, nothing else (the
   // rest keeps GL's defaults: no compare mode, no anisotropy, wrap R unused by 2D lookups).
   glSamplerParameteri(n, GL_TEXTURE_WRAP_S, GLint(glWrap(s.wrapS)));

@@ -1,5 +1,8 @@
 // GL objects of one frame by command-list id: textures, buffers and samplers, created, zeroed and
-// uploaded with DSA (GL 4.5 §6, §8), and deleted at the end of the frame.
+// uploaded with DSA (GL 4.5 §6, §8), and deleted at the end of the frame. On the 3.3 path
+// (configure(false)) the same through bind points: textures on kScratchUnit (gl_state.h), buffers on
+// GL_COPY_WRITE_BUFFER, mutable storage zeroed by uploading zeros (GL 3.3 has neither immutable
+// storage nor clears of textures and buffers).
 //
 // Pinned to the oracle (docs/gl-backend.md): storage is immutable (glTextureStorage*,
 // glNamedBufferStorage) and starts zeroed like the oracle's, because GL leaves fresh storage
@@ -13,6 +16,7 @@
 #include <vector>
 
 #include "gl/gl_api.h"
+#include "gl/gl_enums.h"
 #include "raster/command_list.h"
 
 namespace tessera::gl {
@@ -25,6 +29,7 @@ struct GlTexture {
 
 class FrameResources {
  public:
+  void configure(bool dsa) { dsa_ = dsa; }
   void createTexture(ResourceId id, const TextureDesc& desc);
   void uploadTexture(const UploadTexture& u, std::span<const uint8_t> texels);
   void createBuffer(ResourceId id, uint64_t size);
@@ -44,8 +49,12 @@ class FrameResources {
 
  private:
   void grow(ResourceId id);
+  void createTextureBound(GlTexture& t, const GlFormat& f);
   std::vector<GlTexture> textures_;  // indexed by id
   std::vector<GLuint> buffers_, samplers_;
+  bool dsa_ = true;
+  std::vector<uint8_t> zeros_;  // 3.3 path: the zero bytes new storage is initialised with
+  const uint8_t* zeros(size_t bytes);
 };
 
 }  // namespace tessera::gl

@@ -4,11 +4,11 @@
 
 namespace tessera::gl {
 
-void pinContextState() {
+void pinContextState(bool dsa) {
   glDisable(GL_DITHER);  // on by default (GL 4.6 §17.3.9); the oracle does not dither (F7)
   glDisable(GL_FRAMEBUFFER_SRGB);
   glDisable(GL_PRIMITIVE_RESTART);
-  glDisable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
+  if (dsa) glDisable(GL_PRIMITIVE_RESTART_FIXED_INDEX);  // GL 4.3; GL 3.3 has no such mode
   glDisable(GL_DEPTH_CLAMP);
   glDisable(GL_POLYGON_OFFSET_FILL);
   glDisable(GL_COLOR_LOGIC_OP);
@@ -16,28 +16,55 @@ void pinContextState() {
   glDisable(GL_RASTERIZER_DISCARD);
   glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
   glDisable(GL_SAMPLE_COVERAGE);
-  glDisable(GL_SAMPLE_SHADING);
+  if (dsa) glDisable(GL_SAMPLE_SHADING);  // GL 4.0; off by default
   glDisable(GL_MULTISAMPLE);  // every attachment is single-sampled anyway
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   glProvokingVertex(GL_LAST_VERTEX_CONVENTION);
-  glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+  if (dsa) glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);  // GL 4.5; GL 3.3's fixed convention
+  if (!dsa) glActiveTexture(GL_TEXTURE0 + kScratchUnit);
   glDepthRange(0.0, 1.0);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
 }
 
-void resetFrameState() {
+void resetFrameState(bool dsa) {
   applyViewport(Rect{});
   applyScissor(ScissorState{});
   applyDepth(DepthState{});
   applyBlend(BlendState{});
   applyRaster(RasterState{});
-  // One call each resets every unit's binding of every target (GL 4.6 §8.1: a NULL list binds 0).
-  glBindTextures(0, kMaxTextureUnits, nullptr);
-  glBindSamplers(0, kMaxTextureUnits, nullptr);
+  unbindAllUnits(dsa);
   glUseProgram(0);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+}
+
+void unbindAllUnits(bool dsa) {
+  if (dsa) {
+    // One call each resets every unit's binding of every target (GL 4.6 §8.1: a NULL list binds 0).
+    glBindTextures(0, kMaxTextureUnits, nullptr);
+    glBindSamplers(0, kMaxTextureUnits, nullptr);
+    return;
+  }
+  for (int u = 0; u < kMaxTextureUnits; ++u) {
+    bindTextureOnUnit(false, u, GL_NONE, 0);
+    glBindSampler(GLuint(u), 0);
+  }
+}
+
+void bindTextureOnUnit(bool dsa, int unit, GLenum target, GLuint name) {
+  if (dsa) {
+    glBindTextureUnit(GLuint(unit), name);
+    return;
+  }
+  glActiveTexture(GLenum(GL_TEXTURE0 + unit));
+  if (name == 0) {
+    // The command list's texture kinds are the only targets the backend ever binds.
+    for (GLenum t : {GL_TEXTURE_2D, GL_TEXTURE_2D_ARRAY, GL_TEXTURE_BUFFER}) glBindTexture(t, 0);
+  } else {
+    glBindTexture(target, name);
+  }
+  glActiveTexture(GL_TEXTURE0 + kScratchUnit);
 }
 
 void applyViewport(const Rect& r) { glViewport(r.x, r.y, r.w, r.h); }

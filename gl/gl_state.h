@@ -14,12 +14,24 @@
 
 namespace tessera::gl {
 
-// Once per context, with the context current.
-void pinContextState();
+// The 3.3 path edits textures through bind points: it binds them on this unit, which no program
+// samples (units 0 .. kMaxTextureUnits-1 are the command list's; GL 3.3 guarantees 48 combined
+// units), and leaves it active between commands.
+inline constexpr int kScratchUnit = kMaxTextureUnits;
+
+// Once per context, with the context current. `dsa`: the 4.5 path; the 3.3 path skips the state
+// that GL 3.3 does not have (fixed-index primitive restart, sample shading, clip control), whose
+// 3.3 behaviour is the pinned one already.
+void pinContextState(bool dsa);
 // At the start of a frame: the state counters.h calls GL's initial state (viewport and scissor rect
 // 0x0, no scissor / depth / blend / culling / clip distances, CCW front faces), every unit of
 // 0 .. kMaxTextureUnits-1 without texture and sampler, no program, framebuffer 0.
-void resetFrameState();
+void resetFrameState(bool dsa);
+// Unbinds every texture target and sampler of units 0 .. kMaxTextureUnits-1 (glBindTextures /
+// glBindSamplers with DSA, one target at a time on the 3.3 path).
+void unbindAllUnits(bool dsa);
+// Binds texture `name` of `target` on `unit`; name 0 unbinds every target of the unit.
+void bindTextureOnUnit(bool dsa, int unit, GLenum target, GLuint name);
 
 void applyViewport(const Rect& r);
 void applyScissor(const ScissorState& s);

@@ -31,9 +31,16 @@ const char* statusName(GLenum s) {
   }
 }
 
-void attach(GLuint fbo, GLenum point, const GlTexture& tex, const RenderTarget& t) {
+void attach(bool dsa, GLuint fbo, GLenum point, const GlTexture& tex, const RenderTarget& t) {
   const GLint level = GLint(t.level);
-  if (t.layer == kLayered || tex.desc.kind != TextureKind::Tex2DArray) {
+  const bool whole = t.layer == kLayered || tex.desc.kind != TextureKind::Tex2DArray;
+  if (!dsa) {  // the FBO is bound to GL_FRAMEBUFFER (get())
+    if (whole) {
+      glFramebufferTexture(GL_FRAMEBUFFER, point, tex.name, level);
+    } else {
+      glFramebufferTextureLayer(GL_FRAMEBUFFER, point, tex.name, level, GLint(t.layer));
+    }
+  } else if (whole) {
     glNamedFramebufferTexture(fbo, point, tex.name, level);
   } else {
     glNamedFramebufferTextureLayer(fbo, point, tex.name, level, GLint(t.layer));
@@ -51,18 +58,25 @@ GlFramebuffer* FramebufferCache::get(const RenderTarget& t, const FrameResources
 
   auto fb = std::make_unique<GlFramebuffer>();
   fb->target = t;
-  glCreateFramebuffers(1, &fb->name);
+  fb->dsa = dsa_;
+  if (dsa_) {
+    glCreateFramebuffers(1, &fb->name);
+  } else {
+    // Bound for set-up; SetRenderTarget binds it to GL_DRAW_FRAMEBUFFER right after anyway.
+    glGenFramebuffers(1, &fb->name);
+    glBindFramebuffer(GL_FRAMEBUFFER, fb->name);
+  }
   uint32_t layers = ~0u;
   for (uint32_t i = 0; i < uint32_t(kMaxColorAttachments); ++i) {
     const GlTexture* tex = res.texture(t.color[i]);
     if (tex == nullptr) continue;
-    attach(fb->name, GL_COLOR_ATTACHMENT0 + i, *tex, t);
+    attach(dsa_, fb->name, GL_COLOR_ATTACHMENT0 + i, *tex, t);
     fb->attached |= uint8_t(1u << i);
     fb->colorFormat[i] = tex->desc.format;
     layers = std::min(layers, tex->desc.layers);
   }
   if (const GlTexture* depth = res.texture(t.depth)) {
-    attach(fb->name, GL_DEPTH_ATTACHMENT, *depth, t);
+    attach(dsa_, fb->name, GL_DEPTH_ATTACHMENT, *depth, t);
     layers = std::min(layers, depth->desc.layers);
   }
   fb->layerCount = layers == ~0u ? 1 : layers;
@@ -71,8 +85,14 @@ GlFramebuffer* FramebufferCache::get(const RenderTarget& t, const FrameResources
   fb->drawMask = 0xff;  // unknown: forces the call below
   setDrawMask(*fb, fb->attached);
   // Nothing is read from the framebuffer (images are read from the textures), so no read buffer.
-  glNamedFramebufferReadBuffer(fb->name, GL_NONE);
-  const GLenum status = glCheckNamedFramebufferStatus(fb->name, GL_DRAW_FRAMEBUFFER);
+  // (GL 3.3 still checks the read buffer for completeness, §4.4.4.)
+  if (dsa_) {
+    glNamedFramebufferReadBuffer(fb->name, GL_NONE);
+  } else {
+    glReadBuffer(GL_NONE);
+  }
+  const GLenum status =
+      dsa_ ? glCheckNamedFramebufferStatus(fb->name, GL_DRAW_FRAMEBUFFER) : glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE) {
     glDeleteFramebuffers(1, &fb->name);
     throw Error(std::string(where) + ": the render target is incomplete in GL: " + statusName(status));
@@ -86,7 +106,11 @@ bool FramebufferCache::setDrawMask(GlFramebuffer& fb, uint8_t mask) {
   GLenum bufs[kMaxColorAttachments];
   for (uint32_t i = 0; i < uint32_t(kMaxColorAttachments); ++i)
     bufs[i] = (mask >> i & 1) ? GL_COLOR_ATTACHMENT0 + i : GL_NONE;
-  glNamedFramebufferDrawBuffers(fb.name, kMaxColorAttachments, bufs);
+  if (fb.dsa) {
+    glNamedFramebufferDrawBuffers(fb.name, kMaxColorAttachments, bufs);
+  } else {
+    glDrawBuffers(kMaxColorAttachments, bufs);  // fb is the bound draw framebuffer
+  }
   fb.drawMask = mask;
   return true;
 }

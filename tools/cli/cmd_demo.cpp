@@ -16,6 +16,7 @@
 #include "verify/crosscheck.h"
 #include "verify/crosscheck_report.h"
 #include "tools/cli/frame_job.h"
+#include "tools/cli/gl_options.h"
 #include "tools/cli/mta_demo.h"
 #include "tools/cli/options.h"
 #include "tools/cli/output_directory.h"
@@ -33,6 +34,7 @@ struct DemoArgs {
   bool mta = true;
   std::string railway = "data/railway.glb";
   ResourceLimits limits;  // the scenes' frames (the atlas tree's frames are small and keep the default)
+  gl::GlOptions glOptions;  // --gl-driver, --gl-version, --egl-platform
 };
 
 std::string htmlEscape(const std::string& s) {
@@ -60,7 +62,7 @@ void runDemo(const DemoArgs& a) {
   std::unique_ptr<gl::GlBackend> glb;
   if (a.gl) {
     try {
-      gl::GlOptions go;
+      gl::GlOptions go = a.glOptions;
       go.limits = a.limits;
       glb = gl::GlBackend::create(go);
       report["gl_info"] = glb->info().toJson();
@@ -180,6 +182,7 @@ void addDemoCommand(CLI::App& app) {
   addMemoryBudgetOption(demo, a->limits);
   demo->add_flag("!--no-thread-check", a->checkThreads, "Skip the 1-thread re-render that checks bit-identity");
   demo->add_flag("!--no-gl", a->gl, "Skip the oracle-vs-OpenGL cross-check of every scene");
+  addGlBackendOptions(demo, a->glOptions);
   demo->add_flag("!--no-mta", a->mta, "Skip the atlas tree on railway.glb (build, render over the thesis path, runs, texel)");
   demo->add_option("--railway", a->railway, "railway.glb, the real scene of the atlas tree demo (data/README.md)")->capture_default_str();
   demo->callback([a] {

@@ -14,6 +14,7 @@
 #include "raster/validate.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/frame_job.h"
+#include "tools/cli/gl_options.h"
 #include "tools/cli/options.h"
 #include "tools/cli/output_directory.h"
 #include "tools/scenes/scenes.h"
@@ -44,6 +45,7 @@ struct CrossArgs {
   int threads = 0;
   bool strict = false, noBisect = false;
   ResourceLimits limits;
+  gl::GlOptions gl;  // --gl-driver, --gl-version, --egl-platform
 };
 
 void runCrosscheck(const CrossArgs& a) {
@@ -59,7 +61,7 @@ void runCrosscheck(const CrossArgs& a) {
   if (a.backends == "cpu,cpu") {
     o.selfCheck = true;
   } else {
-    gl::GlOptions go;
+    gl::GlOptions go = a.gl;
     go.strict = a.strict;
     if (a.threads > 0) go.lpThreads = a.threads;
     go.limits = a.limits;
@@ -75,6 +77,7 @@ struct BenchArgs {
   std::string scene, size;
   int threads = 1, repeat = 5;
   ResourceLimits limits;
+  gl::GlOptions gl;  // --gl-driver, --gl-version, --egl-platform
 };
 
 double median(std::vector<double> v) {
@@ -86,7 +89,7 @@ void runBench(const BenchArgs& a) {
   const CommandList list = loadFrame(a.scene, a.size);
   // Both sides get the same explicit count; 0 means every core, for both.
   const int threads = a.threads > 0 ? a.threads : int(tbb::info::default_concurrency());
-  gl::GlOptions go;
+  gl::GlOptions go = a.gl;
   go.lpThreads = threads;
   go.limits = a.limits;
   auto glb = gl::GlBackend::create(go);
@@ -133,6 +136,7 @@ void addVerifyCommands(CLI::App& app) {
   addMemoryBudgetOption(cross, ca->limits);
   cross->add_flag("--strict", ca->strict, "Switch off llvmpipe fast paths that do not change GL semantics");
   cross->add_flag("--no-bisect", ca->noBisect, "Do not bisect to the first diverging draw on failure");
+  addGlBackendOptions(cross, ca->gl);
   cross->callback([ca] { runCrosscheck(*ca); });
 
   auto va = std::make_shared<CrossArgs>();
@@ -195,6 +199,7 @@ void addVerifyCommands(CLI::App& app) {
   addSizeOption(bc, ba->size, "Target size WxH");
   addMemoryBudgetOption(bc, ba->limits);
   bc->add_option("--repeat", ba->repeat, "Timed runs (median reported)")->check(CLI::Range(1, 1000));
+  addGlBackendOptions(bc, ba->gl);
   bc->callback([ba] { runBench(*ba); });
 }
 
