@@ -169,10 +169,11 @@ ExpectationSet parseExpectations(const nlohmann::json& doc, const std::string& f
     e.frame = str("frame");
     if (!j.contains("draw")) throw Error(where + ": field 'draw' is required (a draw index, or null for the frame)");
     if (!j["draw"].is_null()) {
-      if (!j["draw"].is_number_unsigned()) throw Error(where + ": field 'draw' must be a draw index >= 0 or null");
+      if (!j["draw"].is_number_integer() || j["draw"].get<int64_t>() < 0)
+        throw Error(where + ": field 'draw' must be a draw index >= 0 or null");
       e.draw = j["draw"].get<size_t>();
     }
-    if (!j.contains("pixels") || !j["pixels"].is_number_unsigned() || j["pixels"].get<uint64_t>() == 0)
+    if (!j.contains("pixels") || !j["pixels"].is_number_integer() || j["pixels"].get<int64_t>() <= 0)
       throw Error(where + ": field 'pixels' must be a pixel count > 0");
     e.pixels = j["pixels"].get<uint64_t>();
     e.reason = str("reason");

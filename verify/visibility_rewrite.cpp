@@ -1,5 +1,6 @@
 #include "verify/visibility_rewrite.h"
 
+#include <algorithm>
 #include <cstring>
 #include <map>
 #include <optional>
@@ -23,7 +24,7 @@ struct Tracker {
   std::map<ResourceId, std::vector<uint8_t>> buffers;
   std::map<ResourceId, std::string> programNames;
   std::map<ResourceId, TextureDesc> textures;
-  std::map<ResourceId, std::array<float, 16>> mvp;  // uniform slots 0-3 of each program's storage
+  std::map<ResourceId, std::array<float, 64>> uniforms;  // slots 0-15 of each program's storage
   ResourceId program = kNone, vertexBuffer = kNone, indexBuffer = kNone;
   IndexType indexType = IndexType::U16;
   VertexLayout layout;
@@ -48,9 +49,9 @@ struct Tracker {
           if constexpr (std::is_same_v<T, CreateTexture>) textures[c.id] = c.desc;
           if constexpr (std::is_same_v<T, UseProgram>) program = c.program;
           if constexpr (std::is_same_v<T, SetUniforms>) {
-            auto& m = mvp.try_emplace(program, std::array<float, 16>{}).first->second;  // GL's initial values: 0
+            auto& m = uniforms.try_emplace(program, std::array<float, 64>{}).first->second;  // GL's initial values: 0
             const auto bytes = list.bytes(c.data);
-            for (uint32_t s = c.slot; s < c.slot + c.count && s < 4 && size_t(s - c.slot + 1) * 16 <= bytes.size(); ++s)
+            for (uint32_t s = c.slot; s < c.slot + c.count && s < 16 && size_t(s - c.slot + 1) * 16 <= bytes.size(); ++s)
               std::memcpy(&m[size_t(s) * 4], bytes.data() + size_t(s - c.slot) * 16, 16);
           }
           if constexpr (std::is_same_v<T, BindVertexBuffer>) vertexBuffer = c.buffer;
@@ -130,7 +131,8 @@ CommandList rewriteToObjectIds(const CommandList& list, std::string_view frameNa
   struct Rewritten {
     std::vector<uint8_t> vertices;
     uint32_t count = 0;
-    std::array<float, 16> mvp{};
+    std::array<float, 16> mvp{};     // slots 0-3
+    std::array<float, 32> planes{};  // slots 8-15: user clip planes, for programs that use them
   };
   std::map<size_t, Rewritten> draws;  // by command index
   Tracker t;
@@ -148,7 +150,12 @@ CommandList rewriteToObjectIds(const CommandList& list, std::string_view frameNa
                   "' has a geometry stage that moves vertices; the rewrite to object_id keeps the vertex stage only");
     Rewritten r;
     r.count = d->count - d->count % 3;  // a trailing partial triangle draws nothing (GL 4.6 §10.1)
-    if (const auto it = t.mvp.find(t.program); it != t.mvp.end()) r.mvp = it->second;
+    if (const auto it = t.uniforms.find(t.program); it != t.uniforms.end()) {
+      std::copy(it->second.begin(), it->second.begin() + 16, r.mvp.begin());
+      // Of the built-in programs only vertex_color writes clip distances (from slots 8-15, with the
+      // expression object_id uses); every other one writes 0, so object_id gets zero planes.
+      if (t.programName() == "vertex_color") std::copy(it->second.begin() + 32, it->second.end(), r.planes.begin());
+    }
     const std::vector<uint8_t>& vb = t.buffers[t.vertexBuffer];
     r.vertices.resize(size_t(r.count) * kIdStride);
     for (uint32_t v = 0; v < r.count; ++v) {
@@ -226,6 +233,7 @@ CommandList rewriteToObjectIds(const CommandList& list, std::string_view frameNa
     if (!r.count) continue;  // draws nothing either way
     out.useProgram(objectId);
     out.setUniforms(0, r.mvp);
+    out.setUniforms(8, r.planes);
     out.bindVertexBuffer(buffers[i]);
     out.setVertexLayout(idLayout);
     const bool depthOk = s.depth.test && s.depth.write &&

@@ -7,7 +7,9 @@
 // with the object id = the draw's index in the frame (every Draw command counts, from 0, as the
 // cross-check's bisection counts them); the draw then runs "object_id" with the original program's
 // MVP (uniform slots 0-3) as a non-indexed draw of the same vertices in the same order, so
-// gl_PrimitiveID and the provoking vertex are unchanged. The presented target becomes two R32UI
+// gl_PrimitiveID and the provoking vertex are unchanged. User clip planes go along: a vertex_color
+// draw's planes (slots 8-15) become object_id's (the same expression); other programs write no clip
+// distances, so object_id gets zero planes. The presented target becomes two R32UI
 // attachments (object id, primitive id) and a D32F depth attachment, cleared to 0xffffffff and 1.0
 // when it is first bound. Viewport, scissor, culling, winding and clip mask stay. Depth: a draw whose
 // depth state is not "test on, writes on, LESS or LEQUAL" gets LESS with writes on (the nearest
