@@ -59,6 +59,7 @@ constexpr const char* kDefaultExpectations = "tests/expectations/gl-deviations.j
 void runCrosscheck(const CrossArgs& a) {
   if (a.backends != "cpu,cpu" && a.backends != "cpu,gl")
     throw Error("--backends '" + a.backends + "': expected cpu,gl (oracle vs GL) or cpu,cpu (oracle self-check)");
+  if (a.stability && a.backends != "cpu,gl") throw Error("--stability re-renders the GL side: it needs --backends cpu,gl");
   if (!a.report.empty()) prepareOutputDirectory(a.report, "--report");
   const CommandList list = loadFrame(a.frame, a.size);
   verify::CrosscheckOptions o;
