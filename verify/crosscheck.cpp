@@ -29,6 +29,7 @@ struct Side {
   std::vector<ImageVerdict> images;
   double oracleMs = 0, otherMs = 0;
   bool passed = true;
+  std::vector<ExpectationUse> expectations;  // the matched entries and what they covered
 };
 
 Side runBoth(const CommandList& list, std::string_view name, const CrosscheckOptions& o, const OtherBackend& other) {
@@ -53,9 +54,11 @@ Side runBoth(const CommandList& list, std::string_view name, const CrosscheckOpt
     v.oracle = imagePixels(tex, p.level, p.layer);
     v.lo = imagePixels(*tex.prov->lo, p.level, p.layer);
     v.hi = imagePixels(*tex.prov->hi, p.level, p.layer);
-    s.passed = s.passed && v.judgement.passed();
     s.images.push_back(std::move(v));
   }
+  if (o.expectations && o.condition)
+    s.expectations = applyExpectations(s.images, list, o.expectations->matching(*o.condition, name), o.threads, o.limits);
+  for (const ImageVerdict& v : s.images) s.passed = s.passed && v.judgement.passed();
   return s;
 }
 
@@ -154,7 +157,10 @@ CrosscheckResult crosscheck(const CommandList& list, std::string_view frameName,
                             gl::GlBackend* gl) {
   if (!gl && !o.selfCheck) throw Error("crosscheck: no GL backend");
   auto firstCalls = std::make_shared<std::optional<gl::GlCallCounts>>();
-  CrosscheckResult r = crosscheck(list, frameName, o, gl ? glOther(*gl, firstCalls) : fastPathOther(o.threads, o.limits));
+  CrosscheckOptions withCondition = o;
+  if (gl && o.expectations && !o.condition) withCondition.condition = runConditionOf(*gl);
+  CrosscheckResult r = crosscheck(list, frameName, withCondition,
+                                  gl ? glOther(*gl, firstCalls) : fastPathOther(o.threads, o.limits));
   if (gl && *firstCalls) {
     r.json["counters"] = counterEquality(list, **firstCalls);
     r.json["gl_calls"] = (*firstCalls)->toJson();
@@ -170,12 +176,14 @@ CrosscheckResult crosscheck(const CommandList& list, std::string_view frameName,
   Side s = runBoth(list, frameName, o, other);
   r.passed = s.passed;
   nlohmann::json images = nlohmann::json::array();
-  uint64_t pixels = 0, exact = 0, unexplained = 0;
+  uint64_t pixels = 0, exact = 0, unexplained = 0, expected = 0;
   for (const ImageVerdict& v : s.images) {
     nlohmann::json j = toJson(v.judgement);
     j["image"] = v.name;
+    j["expected_deviation"] = v.expectedDeviation;
     images.push_back(j);
     pixels += v.judgement.pixels, exact += v.judgement.exact, unexplained += v.judgement.unexplained;
+    expected += v.expectedDeviation;
   }
   nlohmann::json& out = r.json;
   out["frame"] = std::string(frameName);
@@ -184,6 +192,11 @@ CrosscheckResult crosscheck(const CommandList& list, std::string_view frameName,
   out["pixels"] = pixels;
   out["exact_match_percent"] = pixels ? 100.0 * double(exact) / double(pixels) : 100.0;
   out["unexplained"] = unexplained;
+  out["expected_deviation"] = expected;
+  if (o.expectations)
+    out["expectations"] = {{"file", o.expectations->file},
+                           {"condition", o.condition ? o.condition->toJson() : nlohmann::json(nullptr)},
+                           {"matched", toJson(s.expectations)}};
   out["images"] = images;
   out["timing"] = {{"oracle_provenance_ms", s.oracleMs}, {"other_ms", s.otherMs}};
   if (!s.passed && o.bisect) {

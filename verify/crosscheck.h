@@ -8,6 +8,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
@@ -16,6 +17,7 @@
 #include "base/resource_limits.h"
 #include "gl/gl_backend.h"
 #include "raster/command_list.h"
+#include "verify/expectations.h"
 #include "verify/judge.h"
 
 namespace tessera::verify {
@@ -25,6 +27,11 @@ struct CrosscheckOptions {
   bool bisect = true;  // on failure, find the first diverging draw
   bool selfCheck = false;  // "--backends cpu,cpu": judge the oracle's fast path against its own provenance
   ResourceLimits limits;   // the oracle's frame budget (the GL backend has its own: GlOptions::limits)
+  // Known deviations (expectations.h): entries matching `condition` and the frame re-label the
+  // unexplained pixels they cover as expected deviations. With a GL backend and no condition, the
+  // condition is the backend's (runConditionOf).
+  const ExpectationSet* expectations = nullptr;
+  std::optional<RunCondition> condition;
 };
 
 struct ImageVerdict {
@@ -32,6 +39,7 @@ struct ImageVerdict {
   PresentedImage image;
   Judgement judgement;
   std::vector<uint8_t> oracle, other, lo, hi;  // top-down pixels, the target's format
+  uint64_t expectedDeviation = 0;  // unexplained pixels covered by an expectations entry (failMap 3)
 };
 
 struct CrosscheckResult {

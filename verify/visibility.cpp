@@ -10,6 +10,7 @@
 #include "verify/embree_trace.h"
 #include "verify/json_number.h"
 #include "verify/visibility_check.h"
+#include "verify/visibility_rewrite.h"
 #include "verify/visibility_scene.h"
 
 namespace tessera::verify {
@@ -71,6 +72,15 @@ VisibilityResult compareVisibility(const CommandList& list, const IdImages& orac
 }
 
 VisibilityResult castVisibility(const CommandList& list, const VisibilityOptions& options) {
+  // A frame not drawn with object_id is checked through its object_id rewrite (same geometry and
+  // state; visibility_rewrite.h), which validates the list first.
+  if (needsObjectIdRewrite(list)) {
+    const CommandList rewritten = rewriteToObjectIds(list, "visibility", options.limits);
+    const IdImages oracle = renderOracleIds(rewritten, options.threads, options.limits);
+    VisibilityResult r = castAndJudge(rewritten, oracle, options);
+    r.rewrittenToObjectId = true;
+    return r;
+  }
   // CpuBackend::execute validates the list (and throws naming the command) before rendering.
   const IdImages oracle = renderOracleIds(list, options.threads, options.limits);
   return castAndJudge(list, oracle, options);
@@ -81,6 +91,8 @@ nlohmann::json visibilityToJson(const VisibilityResult& r, bool includeTiming) {
   j["scope"] = "draws to the presented render target (object_id, depth LESS/LEQUAL), one ray per pixel centre";
   j["width"] = r.width;
   j["height"] = r.height;
+  j["rewritten_to_object_id"] = r.rewrittenToObjectId;
+  if (r.rewrittenToObjectId) j["object_id_rule"] = "object id = the draw's index in the frame (Draw commands from 0)";
   j["draws"] = r.draws;
   j["triangles"] = r.triangles;
   j["primitives_clipped"] = r.primitivesClipped;

@@ -87,9 +87,14 @@ struct VisibilityResult {
   std::string embreeVersion, embreeIsa;
   double buildMs = 0, castMs = 0;  // wall time of the Embree build and the ray cast (not deterministic)
   IdImages embree;                 // the ray-cast images (depth = reference plane depth, float)
+  // The frame was not drawn with object_id and was checked through rewriteToObjectIds()
+  // (visibility_rewrite.h): object id = draw index.
+  bool rewrittenToObjectId = false;
 };
 
-// Casts the frame and compares it with the CPU oracle's render of the same list.
+// Casts the frame and compares it with the CPU oracle's render of the same list. A frame whose
+// presented target was drawn with other programs is first rewritten to object_id
+// (visibility_rewrite.h); the ids are then draw indices.
 VisibilityResult castVisibility(const CommandList& list, const VisibilityOptions& options = {});
 
 // The parts, for callers that have the oracle images already (or want to perturb them).

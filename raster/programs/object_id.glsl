@@ -1,7 +1,9 @@
 #version 450 core
 // GLSL twin of object_id.cpp (program "object_id"): the object id to attachment 0 and gl_PrimitiveID
 // (the triangle's index within the draw) to attachment 1, both R32UI (uvec4 outputs; .yzw = 0).
-// Attributes: 0 = position, 2 = object id (U32, arrives as float). Uniforms: u[0..3] = MVP.
+// Attributes: 0 = position, 2 = object id (U32, arrives as float). Uniforms: u[0..3] = MVP; u[8..15] =
+// user clip planes, gl_ClipDistance[i] = ((P.x*x + P.y*y) + P.z*z) + P.w*w as in vertex_color.glsl.
+// Backend uniform tessera_clipMask (never set by a command list): bit i = plane i enabled.
 // Stage layout and uniform conventions: see flat_color.glsl.
 
 layout(location = 0) uniform vec4 u[64];
@@ -14,6 +16,7 @@ out gl_PerVertex {
   float gl_ClipDistance[8];
 };
 layout(location = 0) flat out uint v_id;
+uniform uint tessera_clipMask;
 
 // mulMat4 of common.h, in its order, unfused (`precise`).
 vec4 mulMat4(int base, vec4 v) {
@@ -30,7 +33,12 @@ uint toId(float f) { return (f >= 0.0 && f < 4294967296.0) ? uint(f) : 0xfffffff
 void main() {
   gl_Position = mulMat4(0, a_position);
   v_id = toId(a_id.x);
-  for (int i = 0; i < 8; ++i) gl_ClipDistance[i] = 0.0;  // the oracle's zeroed outputs
+  const vec4 p = a_position;
+  for (int c = 0; c < 8; ++c) {
+    const vec4 pl = u[8 + c];
+    precise float d = ((pl.x * p.x + pl.y * p.y) + pl.z * p.z) + pl.w * p.w;
+    gl_ClipDistance[c] = ((tessera_clipMask >> uint(c)) & 1u) != 0u ? d : 0.0;
+  }
 }
 #endif
 

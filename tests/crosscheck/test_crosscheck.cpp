@@ -14,6 +14,12 @@ gl::GlBackend& glBackend() {
   static std::unique_ptr<gl::GlBackend> b = gl::GlBackend::create({});
   return *b;
 }
+// Known GL deviations, each pinned to its implementation, version, condition, frame and draw.
+const verify::ExpectationSet& expectations() {
+  static const verify::ExpectationSet s =
+      verify::loadExpectations(std::string(TESSERA_SOURCE_DIR) + "/tests/expectations/gl-deviations.json");
+  return s;
+}
 }  // namespace
 
 class CrosscheckScene : public ::testing::TestWithParam<std::string> {};
@@ -23,13 +29,15 @@ TEST_P(CrosscheckScene, EveryGLPixelIsExactOrExplainedAndCountsAreEqual) {
   const CommandList list = scenes::build(s->name, s->width, s->height);
   verify::CrosscheckOptions o;
   o.threads = 2;
+  o.expectations = &expectations();
   const verify::CrosscheckResult r = verify::crosscheck(list, GetParam(), o, &glBackend());
   EXPECT_TRUE(r.json["counters"]["equal"].get<bool>()) << r.json["counters"].dump(1);
   EXPECT_EQ(r.json["unexplained"].get<uint64_t>(), 0u) << r.json.dump(1).substr(0, 4000);
   EXPECT_TRUE(r.passed);
-  std::printf("[ crosscheck ] %-15s exact %.2f%%, unexplained %llu, renderer %s\n", GetParam().c_str(),
-              r.json["exact_match_percent"].get<double>(),
+  std::printf("[ crosscheck ] %-15s exact %.2f%%, unexplained %llu, expected deviation %llu, renderer %s\n",
+              GetParam().c_str(), r.json["exact_match_percent"].get<double>(),
               static_cast<unsigned long long>(r.json["unexplained"].get<uint64_t>()),
+              static_cast<unsigned long long>(r.json["expected_deviation"].get<uint64_t>()),
               glBackend().info().toJson().value("gl_renderer", "?").c_str());
 }
 

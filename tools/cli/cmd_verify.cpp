@@ -4,7 +4,9 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -17,10 +19,14 @@
 #include "tools/cli/gl_options.h"
 #include "tools/cli/options.h"
 #include "tools/cli/output_directory.h"
+#include "tools/cli/repo_paths.h"
+#include "tools/cli/stability_run.h"
 #include "tools/scenes/scenes.h"
 #include "verify/compare_report.h"
 #include "verify/crosscheck.h"
 #include "verify/crosscheck_report.h"
+#include "verify/expectations.h"
+#include "verify/stability.h"
 #include "verify/image_compare.h"
 #include "verify/visibility.h"
 
@@ -46,11 +52,16 @@ struct CrossArgs {
   bool strict = false, noBisect = false;
   ResourceLimits limits;
   gl::GlOptions gl;  // --gl-driver, --gl-version, --egl-platform
+  std::string expectations;  // "" = the repo's tests/expectations/gl-deviations.json when it exists
+  bool noExpectations = false, stability = false;
 };
+
+constexpr const char* kDefaultExpectations = "tests/expectations/gl-deviations.json";
 
 void runCrosscheck(const CrossArgs& a) {
   if (a.backends != "cpu,cpu" && a.backends != "cpu,gl")
     throw Error("--backends '" + a.backends + "': expected cpu,gl (oracle vs GL) or cpu,cpu (oracle self-check)");
+  if (a.stability && a.backends != "cpu,gl") throw Error("--stability re-renders the GL side: it needs --backends cpu,gl");
   if (!a.report.empty()) prepareOutputDirectory(a.report, "--report");
   const CommandList list = loadFrame(a.frame, a.size);
   verify::CrosscheckOptions o;
@@ -67,7 +78,20 @@ void runCrosscheck(const CrossArgs& a) {
     go.limits = a.limits;
     glb = gl::GlBackend::create(go);
   }
-  const verify::CrosscheckResult r = verify::crosscheck(list, a.frame, o, glb.get());
+  std::optional<verify::ExpectationSet> expectations;
+  if (glb && !a.noExpectations) {
+    const std::string path = a.expectations.empty() ? repoPath(kDefaultExpectations) : a.expectations;
+    if (!a.expectations.empty() || std::filesystem::exists(path)) expectations = verify::loadExpectations(path);
+  }
+  if (expectations) o.expectations = &*expectations;
+  verify::CrosscheckResult r = verify::crosscheck(list, a.frame, o, glb.get());
+  if (a.stability && glb) {
+    std::vector<size_t> pixels;
+    for (const verify::ImageVerdict& v : r.images) pixels.push_back(v.judgement.pixels);
+    r.json["stability"] = runStability(a.frame, a.size, list, pixels, a.limits, a.gl);
+    if (!a.report.empty())
+      writeTextFile(a.report + "/stability.html", verify::stabilityHtml(r.json["stability"], a.frame));
+  }
   if (!a.report.empty()) verify::writeCrosscheckReport(r, a.report);
   std::printf("%s\n", r.json.dump(2).c_str());
   if (!r.passed) throw CLI::RuntimeError(1);
@@ -122,6 +146,7 @@ void runBench(const BenchArgs& a) {
 }  // namespace
 
 void addVerifyCommands(CLI::App& app) {
+  addGlDumpCommand(app);  // hidden: the child of `crosscheck --stability`
   auto ca = std::make_shared<CrossArgs>();
   auto* cross = app.add_subcommand(
       "crosscheck",
@@ -137,6 +162,12 @@ void addVerifyCommands(CLI::App& app) {
   cross->add_flag("--strict", ca->strict, "Switch off llvmpipe fast paths that do not change GL semantics");
   cross->add_flag("--no-bisect", ca->noBisect, "Do not bisect to the first diverging draw on failure");
   addGlBackendOptions(cross, ca->gl);
+  cross->add_option("--expectations", ca->expectations,
+                    std::string("Known GL deviations (docs/expectations.md); default: the repo's ") + kDefaultExpectations);
+  cross->add_flag("--no-expectations", ca->noExpectations, "Judge without the expectations file");
+  cross->add_flag("--stability", ca->stability,
+                  "Also render the GL side in child processes under other conditions (repeat, LP_NUM_THREADS 1 and N,\n"
+                  "one CPU, strict) and report any change as GL nondeterministic / fast-path dependent (JSON \"stability\")");
   cross->callback([ca] { runCrosscheck(*ca); });
 
   auto va = std::make_shared<CrossArgs>();
@@ -144,7 +175,7 @@ void addVerifyCommands(CLI::App& app) {
       "visibility",
       "Ray-cast every pixel centre with Embree against the frame's post-transform triangles and compare the\n"
       "object / primitive ids with the oracle's R32UI id targets. Prints JSON; exit 1 on any unexplained mismatch.");
-  vis->add_option("frame", va->frame, "Scene name (e.g. city_ids) or .tframe file whose final target holds id images")
+  vis->add_option("frame", va->frame, "Scene name or .tframe file (a frame not drawn with object_id is rewritten to it: id = draw index)")
       ->required();
   addSizeOption(vis, va->size, "Target size WxH for scenes");
   addThreadsOption(vis, va->threads, "Threads of the ray casts and the oracle render");
