@@ -68,6 +68,11 @@ void ProgramCompiler::release() {
   cache_.clear();
 }
 
+void ProgramCompiler::setMutation(const Mutation* mutation) {
+  release();
+  mutation_ = mutation;
+}
+
 size_t ProgramCompiler::objectCount() const {
   size_t n = 0;
   for (const auto& [name, s] : cache_) n += size_t(s.vs != 0) + size_t(s.gs != 0) + size_t(s.fs != 0);
@@ -96,7 +101,9 @@ void ProgramCompiler::recycle(const LinkedProgram& p) {
 
 const ProgramCompiler::Stages& ProgramCompiler::stages(std::string_view name) {
   if (auto it = cache_.find(name); it != cache_.end()) return it->second;
-  const std::string_view text = glslSource(name);
+  const std::string_view source = glslSource(name);
+  const std::string mutated = mutation_ ? mutation_->applyToSource(name, source) : std::string();  // gl_mutation.h
+  const std::string_view text = mutation_ ? std::string_view(mutated) : source;
   if (text.empty())
     throw Error("program \"" + std::string(name) + "\" has no GLSL twin (" + fileOf(name) + " is not embedded)");
   Stages s;

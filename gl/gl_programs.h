@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "gl/gl_api.h"
+#include "gl/gl_mutation.h"
 #include "raster/program.h"
 
 namespace tessera::gl {
@@ -63,6 +64,9 @@ class ProgramCompiler {
   void release();
   // Program and shader objects held.
   size_t objectCount() const;
+  // Twins compile with this mutation's source edits from now on (nullptr: as written); releases
+  // every cached program and shader so that nothing compiled before is reused.
+  void setMutation(const Mutation* mutation);
 
  private:
   struct Stages {
@@ -72,6 +76,7 @@ class ProgramCompiler {
   LinkedProgram link(std::string_view name);
   std::map<std::string, Stages, std::less<>> cache_;
   std::map<std::string, std::vector<LinkedProgram>, std::less<>> free_;
+  const Mutation* mutation_ = nullptr;
 };
 
 }  // namespace tessera::gl

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "gl/gl_backend.h"
+#include "gl/gl_mutation.h"
 #include "raster/cpu_backend.h"
 #include "raster/serialize.h"
 #include "raster/validate.h"
@@ -40,7 +41,7 @@ CommandList loadFrame(const std::string& what, const std::string& size) {
 }
 
 struct CrossArgs {
-  std::string frame, size, report, backends = "cpu,gl";
+  std::string frame, size, report, backends = "cpu,gl", mutant;
   int threads = 0;
   bool strict = false, noBisect = false;
   ResourceLimits limits;
@@ -63,6 +64,8 @@ void runCrosscheck(const CrossArgs& a) {
     go.strict = a.strict;
     if (a.threads > 0) go.lpThreads = a.threads;
     go.limits = a.limits;
+    if (!a.mutant.empty() && !(go.mutation = gl::findMutation(a.mutant)))
+      throw Error("--mutant '" + a.mutant + "': no such mutant (`tessera mutants --list` names them)");
     glb = gl::GlBackend::create(go);
   }
   const verify::CrosscheckResult r = verify::crosscheck(list, a.frame, o, glb.get());
@@ -133,6 +136,7 @@ void addVerifyCommands(CLI::App& app) {
   addMemoryBudgetOption(cross, ca->limits);
   cross->add_flag("--strict", ca->strict, "Switch off llvmpipe fast paths that do not change GL semantics");
   cross->add_flag("--no-bisect", ca->noBisect, "Do not bisect to the first diverging draw on failure");
+  cross->add_option("--mutant", ca->mutant, "Run GL with this deliberate fault of `tessera mutants` (to see why it is killed)");
   cross->callback([ca] { runCrosscheck(*ca); });
 
   auto va = std::make_shared<CrossArgs>();
