@@ -29,15 +29,13 @@ constexpr std::string_view kMulMat4 = "vec4 mulMat4(int base, vec4 v) {";
 constexpr std::string_view kVsPosition = "gl_Position = mulMat4(0, a_position);";
 constexpr std::string_view kTexturedLookup = "const vec4 texel = texture(tex0, v_st, u[8].x);";
 
-// Half an LSB of an 8-bit channel, taken off the fragment colour while blending is on.
-constexpr std::string_view kBlendTruncDecl = "uniform float tessera_mutBlend;\n";
-
 std::vector<Mutation> build() {
   std::vector<Mutation> m;
   auto add = [&](Mutation x) { m.push_back(std::move(x)); };
 
   // --- rasterization ---------------------------------------------------------------------------
-  add({"fill_rule_flipped", "the rasterizer's tie rule for sample points on an edge reversed (bottom-right instead of top-left)",
+  add({"fill_rule_flipped",
+       "the rasterizer's tie rule for sample points on an edge reversed (bottom-right instead of top-left)",
        "state",
        "glViewportIndexedf moves every viewport by one sub-pixel step (+1/256, -1/256): a sample exactly on an edge "
        "is decided by that shift, i.e. included on right and bottom edges instead of left and top ones",
@@ -46,13 +44,17 @@ std::vector<Mutation> build() {
        "shift of every vertex) keeps. The shift is also within the EDGE_TIE derivation of docs/crosscheck.md "
        "(an implementation may round each vertex to any neighbouring 1/256 grid point). A scene killing it "
        "shows the verdict rejecting a conforming GL",
-       {}, StateFault::FillRuleFlipped});
+       {},
+       StateFault::FillRuleFlipped});
   {
-    Mutation x{"subpixel_bits_4", "a rasterizer that snaps to 4 sub-pixel bits while it reports GL_SUBPIXEL_BITS = 8",
+    Mutation x{"subpixel_bits_4",
+               "a rasterizer that snaps to 4 sub-pixel bits while it reports GL_SUBPIXEL_BITS = 8",
                "source",
                "the last vertex stage of every twin rounds the window position of each vertex to 1/16 px "
                "(viewport read from GL through a mutant uniform)",
-               "", {}, StateFault::None};
+               "",
+               {},
+               StateFault::None};
     for (std::string_view p : {"flat_color", "object_id", "texarray_batch", "textured", "vertex_color"}) {
       x.edits.push_back({p, kMulMat4, "@SNAP@"});
       x.edits.push_back({p, kVsPosition, "gl_Position = tessera_snap16(mulMat4(0, a_position));"});
@@ -62,28 +64,53 @@ std::vector<Mutation> build() {
                        "gl_Position = tessera_snap16(vec4(px, py, p.z, w));"});
     add(std::move(x));
   }
-  add({"viewport_off_by_one", "a viewport origin off by one pixel (y flipped with H - y instead of H - y - 1)", "state",
-       "every SetViewport is issued with y + 1", "", {}, StateFault::ViewportOffByOne});
-  add({"scissor_off_by_one", "an inclusive scissor right edge", "state", "every SetScissor is issued with width + 1", "",
-       {}, StateFault::ScissorOffByOne});
-  add({"varyings_noperspective", "perspective-incorrect varyings (screen-space interpolation)", "source",
+  add({"viewport_off_by_one",
+       "a viewport origin off by one pixel (y flipped with H - y instead of H - y - 1)",
+       "state",
+       "every SetViewport is issued with y + 1",
+       "",
+       {},
+       StateFault::ViewportOffByOne});
+  add({"scissor_off_by_one",
+       "an inclusive scissor right edge",
+       "state",
+       "every SetScissor is issued with width + 1",
+       "",
+       {},
+       StateFault::ScissorOffByOne});
+  add({"varyings_noperspective",
+       "perspective-incorrect varyings (screen-space interpolation)",
+       "source",
        "the fragment inputs of textured and vertex_color are declared noperspective",
        "",
        {{"textured", "layout(location = 0) in vec2 v_st;", "layout(location = 0) noperspective in vec2 v_st;"},
-        {"vertex_color", "layout(location = 0) in vec4 v_color;", "layout(location = 0) noperspective in vec4 v_color;"}},
+        {"vertex_color", "layout(location = 0) in vec4 v_color;",
+         "layout(location = 0) noperspective in vec4 v_color;"}},
        StateFault::None});
-  add({"provoking_vertex_first", "the wrong provoking vertex (first instead of last) for flat varyings", "state",
-       "glProvokingVertex(GL_FIRST_VERTEX_CONVENTION) after every UseProgram", "", {}, StateFault::ProvokingFirst});
-  add({"front_face_flipped", "the front-face winding inverted (CW taken for CCW), so culling removes the wrong faces",
-       "state", "every SetRasterState is issued with glFrontFace(CW) for CCW and the reverse", "", {},
+  add({"provoking_vertex_first",
+       "the wrong provoking vertex (first instead of last) for flat varyings",
+       "state",
+       "glProvokingVertex(GL_FIRST_VERTEX_CONVENTION) after every UseProgram",
+       "",
+       {},
+       StateFault::ProvokingFirst});
+  add({"front_face_flipped",
+       "the front-face winding inverted (CW taken for CCW), so culling removes the wrong faces",
+       "state",
+       "every SetRasterState is issued with glFrontFace(CW) for CCW and the reverse",
+       "",
+       {},
        StateFault::FrontFaceFlipped});
-  add({"clip_planes_ignored", "enabled user clip distances ignored by the clipper", "source",
+  add({"clip_planes_ignored",
+       "enabled user clip distances ignored by the clipper",
+       "source",
        "vertex_color writes 0 (inside) to every gl_ClipDistance",
        "",
        {{"vertex_color", "gl_ClipDistance[c] = ((tessera_clipMask >> uint(c)) & 1u) != 0u ? d : 0.0;",
          "gl_ClipDistance[c] = 0.0;"}},
        StateFault::None});
-  add({"clip_from_displaced", "clip distances computed from the displaced position instead of the undisplaced one",
+  add({"clip_from_displaced",
+       "clip distances computed from the displaced position instead of the undisplaced one",
        "source",
        "atlas_displace's geometry stage takes clip distances 0-3 from x' = (a x + b y) + tx w, y' = (c x + d y) + ty w",
        "",
@@ -93,13 +120,24 @@ std::vector<Mutation> build() {
        StateFault::None});
 
   // --- per-fragment operations -----------------------------------------------------------------
-  add({"depth_strict_swapped", "depth comparison strictness swapped (LESS <-> LEQUAL, GREATER <-> GEQUAL)", "state",
-       "every SetDepthState is issued with the strict and non-strict functions exchanged", "", {},
+  add({"depth_strict_swapped",
+       "depth comparison strictness swapped (LESS <-> LEQUAL, GREATER <-> GEQUAL)",
+       "state",
+       "every SetDepthState is issued with the strict and non-strict functions exchanged",
+       "",
+       {},
        StateFault::DepthStrictSwapped});
-  add({"blend_subtract_swapped", "blend equations SUBTRACT and REVERSE_SUBTRACT exchanged (operand order)", "state",
-       "every SetBlendState is issued with SUBTRACT <-> REVERSE_SUBTRACT", "", {}, StateFault::BlendSubtractSwapped});
+  add({"blend_subtract_swapped",
+       "blend equations SUBTRACT and REVERSE_SUBTRACT exchanged (operand order)",
+       "state",
+       "every SetBlendState is issued with SUBTRACT <-> REVERSE_SUBTRACT",
+       "",
+       {},
+       StateFault::BlendSubtractSwapped});
   {
-    Mutation x{"blend_truncate", "a blend unit that truncates its result to 8 bits instead of rounding", "source",
+    Mutation x{"blend_truncate",
+               "a blend unit that truncates its result to 8 bits instead of rounding",
+               "source",
                "while GL_BLEND is on, flat_color, vertex_color and textured lower their colour by half an LSB (1/510) "
                "before blending: with a source factor ONE (fill_fan, the ONE/ONE and ONE/ZERO cells) round(x - 1/2) "
                "is floor(x) for every non-integer x; with other factors the result drops by factor x 1/2 LSB",
@@ -107,33 +145,53 @@ std::vector<Mutation> build() {
                "return either of the two closest representable values (rounding to nearest is only preferred), and "
                "§17.3.6.1 asks blending for a precision no lower than the destination's; so floor(x) is a conforming "
                "result of every blend and no conforming frame can tell this mutant from GL",
-               {}, StateFault::None};
-    x.edits.push_back({"flat_color", "void main() { o_color = u[4]; }",
-                       "uniform float tessera_mutBlend;\nvoid main() { o_color = u[4] - vec4(tessera_mutBlend * (0.5 / 255.0)); }"});
+               {},
+               StateFault::None};
+    x.edits.push_back(
+        {"flat_color", "void main() { o_color = u[4]; }",
+         "uniform float tessera_mutBlend;\nvoid main() { o_color = u[4] - vec4(tessera_mutBlend * (0.5 / 255.0)); }"});
     x.edits.push_back({"vertex_color", "void main() { o_color = v_color; }",
-                       "uniform float tessera_mutBlend;\nvoid main() { o_color = v_color - vec4(tessera_mutBlend * (0.5 / 255.0)); }"});
+                       "uniform float tessera_mutBlend;\nvoid main() { o_color = v_color - vec4(tessera_mutBlend * "
+                       "(0.5 / 255.0)); }"});
     x.edits.push_back({"textured", "layout(binding = 0) uniform sampler2D tex0;",
                        "layout(binding = 0) uniform sampler2D tex0;\nuniform float tessera_mutBlend;"});
-    x.edits.push_back({"textured", "o_color = texel * u[7];",
-                       "o_color = texel * u[7] - vec4(tessera_mutBlend * (0.5 / 255.0));"});
+    x.edits.push_back(
+        {"textured", "o_color = texel * u[7];", "o_color = texel * u[7] - vec4(tessera_mutBlend * (0.5 / 255.0));"});
     add(std::move(x));
   }
-  add({"rb_swap", "red and blue exchanged (an RGBA8 texture taken as BGRA8)", "source",
-       "textured reads its texture through .bgra", "",
-       {{"textured", kTexturedLookup, "const vec4 texel = texture(tex0, v_st, u[8].x).bgra;"}}, StateFault::None});
+  add({"rb_swap",
+       "red and blue exchanged (an RGBA8 texture taken as BGRA8)",
+       "source",
+       "textured reads its texture through .bgra",
+       "",
+       {{"textured", kTexturedLookup, "const vec4 texel = texture(tex0, v_st, u[8].x).bgra;"}},
+       StateFault::None});
 
   // --- texture sampling --------------------------------------------------------------------------
-  add({"texel_centre_1_64", "texel centres off by 1/64 texel (a fixed-point texel coordinate rounded wrongly)",
-       "source", "textured adds 1/64 of a level-0 texel to (s, t) before the lookup", "",
+  add({"texel_centre_1_64",
+       "texel centres off by 1/64 texel (a fixed-point texel coordinate rounded wrongly)",
+       "source",
+       "textured adds 1/64 of a level-0 texel to (s, t) before the lookup",
+       "",
        {{"textured", kTexturedLookup,
          "const vec4 texel = texture(tex0, v_st + vec2(1.0 / 64.0) / vec2(textureSize(tex0, 0)), u[8].x);"}},
        StateFault::None});
-  add({"lod_bias_plus_1_8", "a LOD computed 1/8 too high", "source", "textured adds 1/8 to its shader LOD bias", "",
-       {{"textured", kTexturedLookup, "const vec4 texel = texture(tex0, v_st, u[8].x + 0.125);"}}, StateFault::None});
-  add({"lod_bias_minus_1_8", "a LOD computed 1/8 too low", "source", "textured subtracts 1/8 from its shader LOD bias",
-       "", {{"textured", kTexturedLookup, "const vec4 texel = texture(tex0, v_st, u[8].x - 0.125);"}},
+  add({"lod_bias_plus_1_8",
+       "a LOD computed 1/8 too high",
+       "source",
+       "textured adds 1/8 to its shader LOD bias",
+       "",
+       {{"textured", kTexturedLookup, "const vec4 texel = texture(tex0, v_st, u[8].x + 0.125);"}},
        StateFault::None});
-  add({"lambda_truncated", "the mip level for NEAREST_MIPMAP_* chosen by truncating lambda instead of rounding it",
+  add({"lod_bias_minus_1_8",
+       "a LOD computed 1/8 too low",
+       "source",
+       "textured subtracts 1/8 from its shader LOD bias",
+       "",
+       {{"textured", kTexturedLookup, "const vec4 texel = texture(tex0, v_st, u[8].x - 0.125);"}},
+       StateFault::None});
+  add({"lambda_truncated",
+       "the mip level for NEAREST_MIPMAP_* chosen by truncating lambda instead of rounding it",
        "source",
        "textured samples with textureLod(trunc(lambda)), lambda = textureQueryLod(...).y + shader bias: under "
        "NEAREST_MIPMAP_* that picks level floor(lambda) where GL picks ceil(lambda + 1/2) - 1",
@@ -141,7 +199,8 @@ std::vector<Mutation> build() {
        {{"textured", kTexturedLookup,
          "const vec4 texel = textureLod(tex0, v_st, trunc(textureQueryLod(tex0, v_st).y + u[8].x));"}},
        StateFault::None});
-  add({"mag_min_switch_0_5", "the magnification/minification switch point at lambda = 0.5 where GL demands 0",
+  add({"mag_min_switch_0_5",
+       "the magnification/minification switch point at lambda = 0.5 where GL demands 0",
        "source",
        "textured magnifies (textureLod(..., 0)) where 0 < lambda <= 0.5, whatever the filters; GL 4.6 §8.15 "
        "puts the switch at c = 0.5 only for a LINEAR mag filter with a NEAREST_MIPMAP_* min filter, else at 0",
@@ -152,21 +211,51 @@ std::vector<Mutation> build() {
          "  const float lambda = textureQueryLod(tex0, v_st).y + u[8].x;\n"
          "  const vec4 texel = (lambda > 0.0 && lambda <= 0.5) ? magnified : minified;"}},
        StateFault::None});
-  add({"wrap_repeat_mirrored", "wrap modes REPEAT and MIRRORED_REPEAT exchanged in the driver's enum table", "state",
-       "every sampler is created with REPEAT <-> MIRRORED_REPEAT", "", {}, StateFault::WrapRepeatMirrored});
-  add({"wrap_edge_border", "wrap modes CLAMP_TO_EDGE and CLAMP_TO_BORDER exchanged", "state",
-       "every sampler is created with CLAMP_TO_EDGE <-> CLAMP_TO_BORDER", "", {}, StateFault::WrapEdgeBorder});
-  add({"border_color_ignored", "the sampler's border colour never uploaded (transparent black)", "state",
-       "every sampler is created with border colour (0, 0, 0, 0)", "", {}, StateFault::BorderColorIgnored});
-  add({"filter_nearest_linear", "texel filters NEAREST and LINEAR exchanged", "state",
+  add({"wrap_repeat_mirrored",
+       "wrap modes REPEAT and MIRRORED_REPEAT exchanged in the driver's enum table",
+       "state",
+       "every sampler is created with REPEAT <-> MIRRORED_REPEAT",
+       "",
+       {},
+       StateFault::WrapRepeatMirrored});
+  add({"wrap_edge_border",
+       "wrap modes CLAMP_TO_EDGE and CLAMP_TO_BORDER exchanged",
+       "state",
+       "every sampler is created with CLAMP_TO_EDGE <-> CLAMP_TO_BORDER",
+       "",
+       {},
+       StateFault::WrapEdgeBorder});
+  add({"border_color_ignored",
+       "the sampler's border colour never uploaded (transparent black)",
+       "state",
+       "every sampler is created with border colour (0, 0, 0, 0)",
+       "",
+       {},
+       StateFault::BorderColorIgnored});
+  add({"filter_nearest_linear",
+       "texel filters NEAREST and LINEAR exchanged",
+       "state",
        "every sampler is created with NEAREST <-> LINEAR in the mag filter and in the texel part of the min filter",
-       "", {}, StateFault::FilterNearestLinear});
-  add({"mipmap_linear_as_nearest", "the mip filter *_MIPMAP_LINEAR done as *_MIPMAP_NEAREST (no blend between levels)",
-       "state", "every sampler is created with *_MIPMAP_LINEAR replaced by *_MIPMAP_NEAREST", "", {},
+       "",
+       {},
+       StateFault::FilterNearestLinear});
+  add({"mipmap_linear_as_nearest",
+       "the mip filter *_MIPMAP_LINEAR done as *_MIPMAP_NEAREST (no blend between levels)",
+       "state",
+       "every sampler is created with *_MIPMAP_LINEAR replaced by *_MIPMAP_NEAREST",
+       "",
+       {},
        StateFault::MipmapLinearNearest});
-  add({"sampler_lod_bias_ignored", "the sampler's TEXTURE_LOD_BIAS ignored", "state",
-       "every sampler is created with LOD bias 0", "", {}, StateFault::SamplerLodBiasIgnored});
-  add({"derivatives_fine", "fine derivatives where the shader asks for coarse ones", "source",
+  add({"sampler_lod_bias_ignored",
+       "the sampler's TEXTURE_LOD_BIAS ignored",
+       "state",
+       "every sampler is created with LOD bias 0",
+       "",
+       {},
+       StateFault::SamplerLodBiasIgnored});
+  add({"derivatives_fine",
+       "fine derivatives where the shader asks for coarse ones",
+       "source",
        "texarray_batch uses dFdxFine / dFdyFine instead of dFdxCoarse / dFdyCoarse",
        "GLSL 4.50 §8.14.1 lets dFdxCoarse / dFdyCoarse be computed from the current fragment's own neighbours "
        "(\"possibly, but not necessarily\" coarser than dFdxFine), so an implementation that answers every coarse "
@@ -175,13 +264,20 @@ std::vector<Mutation> build() {
        StateFault::None});
 
   // --- texture arrays and batching ---------------------------------------------------------------
-  add({"layer_floor", "the array layer chosen by floor(r) instead of floor(r + 1/2)", "source",
-       "texarray_batch passes r - 1/2 as the layer coordinate, so GL's floor(r' + 1/2) is floor(r)", "",
+  add({"layer_floor",
+       "the array layer chosen by floor(r) instead of floor(r + 1/2)",
+       "source",
+       "texarray_batch passes r - 1/2 as the layer coordinate, so GL's floor(r' + 1/2) is floor(r)",
+       "",
        {{"texarray_batch", "const vec3 p = vec3(st, tae.y);", "const vec3 p = vec3(st, tae.y - 0.5);"}},
        StateFault::None});
-  add({"tam_index_truncated", "the texture-array mapping index truncated instead of rounded", "source",
-       "texarray_batch computes the TAM index as floor(z) instead of floor(z + 1/2)", "",
-       {{"texarray_batch", "floor(double(v_str.z) + 0.5lf)", "floor(double(v_str.z))"}}, StateFault::None});
+  add({"tam_index_truncated",
+       "the texture-array mapping index truncated instead of rounded",
+       "source",
+       "texarray_batch computes the TAM index as floor(z) instead of floor(z + 1/2)",
+       "",
+       {{"texarray_batch", "floor(double(v_str.z) + 0.5lf)", "floor(double(v_str.z))"}},
+       StateFault::None});
   return m;
 }
 
@@ -204,23 +300,35 @@ Wrap swapWrap(Wrap w, Wrap a, Wrap b) { return w == a ? b : w == b ? a : w; }
 
 Filter swapTexelFilter(Filter f) {
   switch (f) {
-    case Filter::Nearest: return Filter::Linear;
-    case Filter::Linear: return Filter::Nearest;
-    case Filter::NearestMipmapNearest: return Filter::LinearMipmapNearest;
-    case Filter::LinearMipmapNearest: return Filter::NearestMipmapNearest;
-    case Filter::NearestMipmapLinear: return Filter::LinearMipmapLinear;
-    case Filter::LinearMipmapLinear: return Filter::NearestMipmapLinear;
-    default: return f;
+    case Filter::Nearest:
+      return Filter::Linear;
+    case Filter::Linear:
+      return Filter::Nearest;
+    case Filter::NearestMipmapNearest:
+      return Filter::LinearMipmapNearest;
+    case Filter::LinearMipmapNearest:
+      return Filter::NearestMipmapNearest;
+    case Filter::NearestMipmapLinear:
+      return Filter::LinearMipmapLinear;
+    case Filter::LinearMipmapLinear:
+      return Filter::NearestMipmapLinear;
+    default:
+      return f;
   }
 }
 
 GLenum swapStrict(CompareFunc f) {
   switch (f) {
-    case CompareFunc::Less: return GL_LEQUAL;
-    case CompareFunc::LEqual: return GL_LESS;
-    case CompareFunc::Greater: return GL_GEQUAL;
-    case CompareFunc::GEqual: return GL_GREATER;
-    default: return glCompareFunc(f);
+    case CompareFunc::Less:
+      return GL_LEQUAL;
+    case CompareFunc::LEqual:
+      return GL_LESS;
+    case CompareFunc::Greater:
+      return GL_GEQUAL;
+    case CompareFunc::GEqual:
+      return GL_GREATER;
+    default:
+      return glCompareFunc(f);
   }
 }
 
@@ -324,9 +432,14 @@ SamplerState Mutation::applyToState(const SamplerState& in) const {
       if (s.minFilter == Filter::LinearMipmapLinear) s.minFilter = Filter::LinearMipmapNearest;
       if (s.minFilter == Filter::NearestMipmapLinear) s.minFilter = Filter::NearestMipmapNearest;
       break;
-    case StateFault::SamplerLodBiasIgnored: s.lodBias = 0.0f; break;
-    case StateFault::BorderColorIgnored: s.borderColor = {0, 0, 0, 0}; break;
-    default: break;
+    case StateFault::SamplerLodBiasIgnored:
+      s.lodBias = 0.0f;
+      break;
+    case StateFault::BorderColorIgnored:
+      s.borderColor = {0, 0, 0, 0};
+      break;
+    default:
+      break;
   }
   return s;
 }

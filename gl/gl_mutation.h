@@ -31,19 +31,19 @@ struct SourceEdit {
 // The GL state faults (applied by applyToState).
 enum class StateFault {
   None,
-  FillRuleFlipped,         // viewport moved by one sub-pixel step (+1/256, -1/256) with glViewportIndexedf
-  ViewportOffByOne,        // viewport origin y + 1
-  ScissorOffByOne,         // scissor width + 1 (an inclusive right edge)
-  DepthStrictSwapped,      // LESS <-> LEQUAL and GREATER <-> GEQUAL
-  ProvokingFirst,          // glProvokingVertex(GL_FIRST_VERTEX_CONVENTION)
-  FrontFaceFlipped,        // glFrontFace with CW and CCW exchanged
-  BlendSubtractSwapped,    // SUBTRACT <-> REVERSE_SUBTRACT
-  WrapRepeatMirrored,      // sampler: REPEAT <-> MIRRORED_REPEAT
-  WrapEdgeBorder,          // sampler: CLAMP_TO_EDGE <-> CLAMP_TO_BORDER
-  FilterNearestLinear,     // sampler: NEAREST <-> LINEAR in the mag filter and the min filter's texel part
-  MipmapLinearNearest,     // sampler: *_MIPMAP_LINEAR -> *_MIPMAP_NEAREST
-  SamplerLodBiasIgnored,   // sampler: TEXTURE_LOD_BIAS 0
-  BorderColorIgnored,      // sampler: border colour (0, 0, 0, 0)
+  FillRuleFlipped,        // viewport moved by one sub-pixel step (+1/256, -1/256) with glViewportIndexedf
+  ViewportOffByOne,       // viewport origin y + 1
+  ScissorOffByOne,        // scissor width + 1 (an inclusive right edge)
+  DepthStrictSwapped,     // LESS <-> LEQUAL and GREATER <-> GEQUAL
+  ProvokingFirst,         // glProvokingVertex(GL_FIRST_VERTEX_CONVENTION)
+  FrontFaceFlipped,       // glFrontFace with CW and CCW exchanged
+  BlendSubtractSwapped,   // SUBTRACT <-> REVERSE_SUBTRACT
+  WrapRepeatMirrored,     // sampler: REPEAT <-> MIRRORED_REPEAT
+  WrapEdgeBorder,         // sampler: CLAMP_TO_EDGE <-> CLAMP_TO_BORDER
+  FilterNearestLinear,    // sampler: NEAREST <-> LINEAR in the mag filter and the min filter's texel part
+  MipmapLinearNearest,    // sampler: *_MIPMAP_LINEAR -> *_MIPMAP_NEAREST
+  SamplerLodBiasIgnored,  // sampler: TEXTURE_LOD_BIAS 0
+  BorderColorIgnored,     // sampler: border colour (0, 0, 0, 0)
 };
 
 // Uniforms a mutated twin may declare; applyToState sets them on the current program after every
@@ -52,11 +52,11 @@ inline constexpr const char* kMutationViewportUniform = "tessera_mutViewport";  
 inline constexpr const char* kMutationBlendUniform = "tessera_mutBlend";        // float: 1 while GL_BLEND is on
 
 struct Mutation {
-  std::string_view name;       // stable, snake_case: the CLI's --mutants and the report use it
-  std::string_view imitates;   // the driver bug it imitates
-  std::string_view kind;       // "source" (a twin) or "state" (GL state)
-  std::string_view change;     // what exactly changes, one sentence
-  std::string_view equivalent; // non-empty: why no GL-conforming frame can tell it apart (the argument)
+  std::string_view name;        // stable, snake_case: the CLI's --mutants and the report use it
+  std::string_view imitates;    // the driver bug it imitates
+  std::string_view kind;        // "source" (a twin) or "state" (GL state)
+  std::string_view change;      // what exactly changes, one sentence
+  std::string_view equivalent;  // non-empty: why no GL-conforming frame can tell it apart (the argument)
   std::vector<SourceEdit> edits;
   StateFault state = StateFault::None;
 

@@ -1,10 +1,10 @@
 #include "verify/mutants.h"
 
+#include <fmt/format.h>
+
 #include <chrono>
 #include <filesystem>
 #include <memory>
-
-#include <fmt/format.h>
 
 #include "base/atomic_file.h"
 #include "base/error.h"
@@ -85,8 +85,9 @@ nlohmann::json toJson(const MutantsResult& r) {
           {"equivalent", equivalent},
           {"killed_percent", r.killedPercent},
           {"killed_percent_meaning", "killed / mutants not catalogued as equivalent"},
-          {"kill_rule", "a scene kills a mutant when GL under the mutant has an unexplained pixel that the unmodified "
-                        "backend did not have"},
+          {"kill_rule",
+           "a scene kills a mutant when GL under the mutant has an unexplained pixel that the unmodified "
+           "backend did not have"},
           {"passed", r.passed()},
           {"runtime_seconds", r.runtimeSeconds}};
 }
@@ -95,11 +96,20 @@ std::string escape(std::string_view s) {
   std::string o;
   for (char c : s) {
     switch (c) {
-      case '&': o += "&amp;"; break;
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '"': o += "&quot;"; break;
-      default: o += c;
+      case '&':
+        o += "&amp;";
+        break;
+      case '<':
+        o += "&lt;";
+        break;
+      case '>':
+        o += "&gt;";
+        break;
+      case '"':
+        o += "&quot;";
+        break;
+      default:
+        o += c;
     }
   }
   return o;
@@ -194,8 +204,9 @@ void writeMutantsReport(const MutantsResult& r, const std::string& dir) {
                         row.verdictTooStrict ? " — but killed: the verdict is stricter than GL here" : "");
     for (size_t f = 0; f < r.frames.size(); ++f) {
       const bool kill = row.newUnexplained[f] > 0;
-      rows += fmt::format("<td class={} title='{} unexplained, {} not unexplained without the mutant'>{}</td>",
-                          kill ? "kill" : "live", row.unexplained[f], row.newUnexplained[f], row.unexplained[f]);
+      rows += fmt::format(
+          "<td class={} title='{} unexplained, {} of them new (not unexplained without the mutant)'>{}</td>",
+          kill ? "kill" : "live", row.unexplained[f], row.newUnexplained[f], row.unexplained[f]);
     }
     rows += "<td>" + escape(m.change);
     if (!m.equivalent.empty()) rows += "<br><i>equivalent: " + escape(m.equivalent) + "</i>";
@@ -208,7 +219,7 @@ td.kill{{background:#8d8;font-weight:bold}}td.live{{color:#888}}td.killed{{backg
 td.equivalent{{background:#ddf}}td.alarm{{background:#f55}}td.clean{{background:#dfd}}tr.base{{background:#f4f4f4}}</style>
 <h1>Mutation testing of the cross-check</h1>
 <p><b>{verdict}</b> · killed {killed_percent:.1f}% ({killed} killed, {survived} survived, {equivalent} equivalent) ·
-runtime {runtime:.1f} s</p>
+runtime {runtime:.1f} s · GL: {renderer}{strict}</p>
 <p>A cell is the number of unexplained pixels of GL under the mutant in that scene; a green cell is a kill: an
 unexplained pixel that the unmodified backend does not have. The first row holds the unmodified backend's own
 unexplained pixels (false alarms). A mutant catalogued as equivalent (GL allows what it does) that a scene still
@@ -220,7 +231,9 @@ kills is marked red: there the verdict would reject a conforming GL. See docs/mu
       fmt::arg("verdict", r.passed() ? "PASS" : "FAIL"), fmt::arg("killed_percent", r.killedPercent),
       fmt::arg("killed", r.json.value("killed", 0)), fmt::arg("survived", r.json.value("survived", 0)),
       fmt::arg("equivalent", r.json.value("equivalent", 0)), fmt::arg("runtime", r.runtimeSeconds),
-      fmt::arg("head", head), fmt::arg("rows", rows), fmt::arg("json", escape(r.json.dump(1))));
+      fmt::arg("renderer", escape(r.json.contains("gl_info") ? r.json["gl_info"].value("gl_renderer", "?") : "?")),
+      fmt::arg("strict", r.json.value("strict", false) ? " (--strict)" : ""), fmt::arg("head", head),
+      fmt::arg("rows", rows), fmt::arg("json", escape(r.json.dump(1))));
   writeFileAtomically(dir + "/index.html", html);
 }
 

@@ -72,8 +72,13 @@ TEST(MutationCatalogue, EverySourceEditChangesTheTwinItNames) {
 }
 
 TEST(MutationCatalogue, AnEditWhosePatternIsMissingIsAnErrorNotASilentSurvivor) {
-  gl::Mutation m{"broken", "nothing", "source", "replaces a string no twin contains", "",
-                 {{"flat_color", "this text is in no twin", "x"}}, gl::StateFault::None};
+  gl::Mutation m{"broken",
+                 "nothing",
+                 "source",
+                 "replaces a string no twin contains",
+                 "",
+                 {{"flat_color", "this text is in no twin", "x"}},
+                 gl::StateFault::None};
   EXPECT_THROW(m.applyToSource("flat_color", gl::glslSource("flat_color")), Error);
 }
 
@@ -111,7 +116,8 @@ TEST(MutationCatalogue, StateMutantsChangeOnlyTheSamplerFieldTheyAreAbout) {
 // floor(r + 1/2) put in different layers of different colours.
 TEST(Mutants, EachMutantOfTheFastSubsetIsKilledByTheSceneThatExercisesItAndTheUnmodifiedBackendIsClean) {
   std::vector<verify::MutantFrame> frames;
-  for (const char* s : {"provoking_vertex", "array_layers", "atlas_clip", "lod_levels", "blend"}) frames.push_back(frame(s));
+  for (const char* s : {"provoking_vertex", "array_layers", "atlas_clip", "lod_levels", "blend"})
+    frames.push_back(frame(s));
   const std::vector<std::pair<std::string, std::string>> expected = {
       {"provoking_vertex_first", "provoking_vertex"},  // every triangle's three ids differ
       {"layer_floor", "array_layers"},                 // layers 0.7, 1.8, 2.7 round up

@@ -52,7 +52,8 @@ void runMutantsCommand(const MutantsArgs& a) {
       const gl::Mutation* m = gl::findMutation(name);
       if (m == nullptr) {
         std::string known;
-        for (const gl::Mutation& k : gl::mutationCatalogue()) known += (known.empty() ? "" : ", ") + std::string(k.name);
+        for (const gl::Mutation& k : gl::mutationCatalogue())
+          known += (known.empty() ? "" : ", ") + std::string(k.name);
         throw Error("--mutants: unknown mutant '" + name + "' (known: " + known + ")");
       }
       mutations.push_back(m);
@@ -104,12 +105,14 @@ void addMutantsCommand(CLI::App& app) {
       "unmodified backend), killed_percent and runtime_seconds. Progress goes to stderr. Exit 1 when a\n"
       "non-equivalent mutant survives or the unmodified backend raises a false alarm. See docs/mutants.md.");
   cmd->add_option("--scenes", a->scenes, "Comma-separated built-in scenes (default: every scene of `tessera scenes`)");
-  cmd->add_option("--mutants", a->mutants, "Comma-separated mutant names (default: the whole catalogue; --list shows it)");
+  cmd->add_option("--mutants", a->mutants,
+                  "Comma-separated mutant names (default: the whole catalogue; --list shows it)");
   cmd->add_option("--report", a->report, "Write report.json and index.html (the mutant x scene table) here");
   cmd->add_flag("--list", a->list, "Print the catalogue (name, imitates, kind, change, equivalence argument) and exit");
   addThreadsOption(cmd, a->threads, "Oracle threads, and LP_NUM_THREADS for llvmpipe when > 0");
   addMemoryBudgetOption(cmd, a->limits);
-  cmd->add_flag("--strict", a->strict, "Switch off llvmpipe fast paths that do not change GL semantics (as crosscheck)");
+  cmd->add_flag("--strict", a->strict,
+                "Switch off llvmpipe fast paths that do not change GL semantics (as crosscheck)");
   cmd->callback([a] { runMutantsCommand(*a); });
 }
 

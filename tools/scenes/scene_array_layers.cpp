@@ -13,7 +13,8 @@ void buildArrayLayers(CommandList& cl, int w, int h) {
   d.width = d.height = 4;
   d.layers = 4;
   const ResourceId array = cl.createTexture(d);
-  const std::array<uint8_t, 4> colours[4] = {{230, 60, 60, 255}, {60, 200, 60, 255}, {60, 90, 230, 255}, {230, 210, 40, 255}};
+  const std::array<uint8_t, 4> colours[4] = {
+      {230, 60, 60, 255}, {60, 200, 60, 255}, {60, 90, 230, 255}, {230, 210, 40, 255}};
   for (uint32_t l = 0; l < 4; ++l) cl.uploadTexture(array, 0, l, checker(4, 4, 4, colours[l], colours[l]).rgba);
   const float layers[6] = {0.3f, 0.7f, 1.2f, 1.8f, 2.4f, 2.7f};
   std::vector<float> tam;

@@ -2,8 +2,8 @@
 // one flat tint. s is affine in x and t is constant, so du/dy = dv/dx = dv/dy = 0 and every rho GL
 // 4.6 §8.14.1 allows (the exact one, and any f with max(mu, mv) <= f <= mu + mv) is the same number
 // |du/dx|, with coarse or fine derivatives alike: lambda is known to the precision of log2 alone.
-// (With t affine in y too, mu + mv would allow lambda up to 1 higher.) Columns: lambda = 0.25, 0.75, 1.3, 1.7 (none within 1/8 of a switch
-// point: 0, an integer, or k + 1/2). Bottom row LINEAR_MIPMAP_LINEAR (LINEAR mag), top row
+// (With t affine in y too, mu + mv would allow lambda up to 1 higher.) Columns: lambda = 0.25, 0.75, 1.3, 1.7 (none
+// within 1/8 of a switch point: 0, an integer, or k + 1/2). Bottom row LINEAR_MIPMAP_LINEAR (LINEAR mag), top row
 // NEAREST_MIPMAP_NEAREST (NEAREST mag).
 #include "tools/scenes/scene_common.h"
 
@@ -11,8 +11,8 @@ namespace tessera::scenes {
 
 void buildLodLevels(CommandList& cl, int w, int h) {
   beginFrame(cl, w, h, false, {0, 0, 0, 1});
-  static const std::array<uint8_t, 3> tints[7] = {{255, 255, 255}, {255, 40, 40}, {40, 255, 40}, {40, 40, 255},
-                                                  {255, 255, 40}, {255, 40, 255}, {40, 255, 255}};
+  static const std::array<uint8_t, 3> tints[7] = {{255, 255, 255}, {255, 40, 40},  {40, 255, 40}, {40, 40, 255},
+                                                  {255, 255, 40},  {255, 40, 255}, {40, 255, 255}};
   TextureDesc d;
   d.width = d.height = 64;
   d.levels = fullMipCount(64, 64);
@@ -29,8 +29,8 @@ void buildLodLevels(CommandList& cl, int w, int h) {
   for (int row = 0; row < 2; ++row)
     for (int col = 0; col < 4; ++col) {
       const float x0 = float(col * 32 + 4), y0 = float(row * 32 + 4), r = lambdas2[col] * 24.0f / 64.0f;
-      m.quad({x0, y0, 0}, {x0 + 24, y0, 0}, {x0 + 24, y0 + 24, 0}, {x0, y0 + 24, 0}, {0, 0.5f, 0, 0},
-             {r, 0.5f, 0, 0}, {r, 0.5f, 0, 0}, {0, 0.5f, 0, 0});
+      m.quad({x0, y0, 0}, {x0 + 24, y0, 0}, {x0 + 24, y0 + 24, 0}, {x0, y0 + 24, 0}, {0, 0.5f, 0, 0}, {r, 0.5f, 0, 0},
+             {r, 0.5f, 0, 0}, {0, 0.5f, 0, 0});
     }
   bindMesh(cl, m);
   cl.useProgram(cl.createProgram("textured"));

@@ -23,7 +23,8 @@ void buildProvokingVertex(CommandList& cl, int w, int h) {
     if (i % 2 == 0) {
       m.triangle({{x0, y0, 0}, none, id}, {{x0 + s, y0, 0}, none, id + 1}, {{x0 + s / 2, y0 + 0.8f, 0}, none, id + 2});
     } else {
-      m.triangle({{x0, y0 + 0.8f, 0}, none, id}, {{x0 + s / 2, y0, 0}, none, id + 1}, {{x0 + s, y0 + 0.8f, 0}, none, id + 2});
+      m.triangle({{x0, y0 + 0.8f, 0}, none, id}, {{x0 + s / 2, y0, 0}, none, id + 1},
+                 {{x0 + s, y0 + 0.8f, 0}, none, id + 2});
     }
   }
   const uint32_t n = bindMesh(cl, m);
