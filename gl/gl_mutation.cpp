@@ -27,6 +27,13 @@ constexpr std::string_view kSnap16 =
 
 constexpr std::string_view kMulMat4 = "vec4 mulMat4(int base, vec4 v) {";
 constexpr std::string_view kVsPosition = "gl_Position = mulMat4(0, a_position);";
+// Why a unorm result one step below round-to-nearest is legal (blend_truncate, unorm_truncate).
+constexpr std::string_view kTruncationIsConforming =
+    "GL 4.6 §2.3.5.2 converts a float r to unorm with convert_float_uint, which returns one of the two b-bit "
+    "values closest to r, rounding to nearest being only preferred; blending (§17.3.6.1) is done at no less than "
+    "the destination's precision and converted the same way. The mutant only ever moves a value by less than "
+    "half an LSB before that conversion, so every stored value is one of the two neighbours of the exact one: "
+    "a conforming GL may store it, and a verdict that kills this mutant rejects a conforming GL";
 constexpr std::string_view kTexturedLookup = "const vec4 texel = texture(tex0, v_st, u[8].x);";
 
 std::vector<Mutation> build() {
@@ -136,29 +143,39 @@ std::vector<Mutation> build() {
        StateFault::BlendSubtractSwapped});
   {
     Mutation x{"blend_truncate",
-               "a blend unit that truncates its result to 8 bits instead of rounding",
+               "a blend unit that truncates its result to 8 bits instead of rounding it",
                "source",
-               "while GL_BLEND is on, flat_color, vertex_color and textured lower their colour by half an LSB (1/510) "
-               "before blending: with a source factor ONE (fill_fan, the ONE/ONE and ONE/ZERO cells) round(x - 1/2) "
-               "is floor(x) for every non-integer x; with other factors the result drops by factor x 1/2 LSB",
-               "GL 4.6 §2.3.5.2 converts a float to an unsigned normalized value with convert_float_uint, which may "
-               "return either of the two closest representable values (rounding to nearest is only preferred), and "
-               "§17.3.6.1 asks blending for a precision no lower than the destination's; so floor(x) is a conforming "
-               "result of every blend and no conforming frame can tell this mutant from GL",
+               "while GL_BLEND is on, flat_color, vertex_color and textured lower their RGB output by 0.49 LSB before "
+               "blending, so a blend with source factor ONE stores floor(x) for every x at least 0.01 LSB above a "
+               "step; other factors lower the result by factor x 0.49 LSB: always less than half an LSB",
+               kTruncationIsConforming,
                {},
                StateFault::None};
-    x.edits.push_back(
-        {"flat_color", "void main() { o_color = u[4]; }",
-         "uniform float tessera_mutBlend;\nvoid main() { o_color = u[4] - vec4(tessera_mutBlend * (0.5 / 255.0)); }"});
+    x.edits.push_back({"flat_color", "void main() { o_color = u[4]; }",
+                       "uniform float tessera_mutBlend;\n"
+                       "void main() { o_color = u[4] - vec4(vec3(tessera_mutBlend * (0.49 / 255.0)), 0.0); }"});
     x.edits.push_back({"vertex_color", "void main() { o_color = v_color; }",
-                       "uniform float tessera_mutBlend;\nvoid main() { o_color = v_color - vec4(tessera_mutBlend * "
-                       "(0.5 / 255.0)); }"});
+                       "uniform float tessera_mutBlend;\n"
+                       "void main() { o_color = v_color - vec4(vec3(tessera_mutBlend * (0.49 / 255.0)), 0.0); }"});
     x.edits.push_back({"textured", "layout(binding = 0) uniform sampler2D tex0;",
                        "layout(binding = 0) uniform sampler2D tex0;\nuniform float tessera_mutBlend;"});
-    x.edits.push_back(
-        {"textured", "o_color = texel * u[7];", "o_color = texel * u[7] - vec4(tessera_mutBlend * (0.5 / 255.0));"});
+    x.edits.push_back({"textured", "o_color = texel * u[7];",
+                       "o_color = texel * u[7] - vec4(vec3(tessera_mutBlend * (0.49 / 255.0)), 0.0);"});
     add(std::move(x));
   }
+  add({"unorm_truncate",
+       "float to unorm8 conversion of colour outputs truncating instead of rounding to nearest",
+       "source",
+       "flat_color, vertex_color and textured lower their RGB output by 0.49 LSB, blended or not: every stored "
+       "value becomes floor(255 x) unless 255 x is within 0.01 of the next step, and always one of the two "
+       "representable neighbours of the exact value",
+       kTruncationIsConforming,
+       {{"flat_color", "void main() { o_color = u[4]; }",
+         "void main() { o_color = u[4] - vec4(vec3(0.49 / 255.0), 0.0); }"},
+        {"vertex_color", "void main() { o_color = v_color; }",
+         "void main() { o_color = v_color - vec4(vec3(0.49 / 255.0), 0.0); }"},
+        {"textured", "o_color = texel * u[7];", "o_color = texel * u[7] - vec4(vec3(0.49 / 255.0), 0.0);"}},
+       StateFault::None});
   add({"rb_swap",
        "red and blue exchanged (an RGBA8 texture taken as BGRA8)",
        "source",

@@ -67,7 +67,9 @@ TEST(MutationCatalogue, EverySourceEditChangesTheTwinItNames) {
     }
     // A twin the mutant does not name is left exactly as it is.
     const std::string_view flat = gl::glslSource("flat_color");
-    if (!programs.count("flat_color")) EXPECT_EQ(m.applyToSource("flat_color", flat), flat) << m.name;
+    if (!programs.count("flat_color")) {
+      EXPECT_EQ(m.applyToSource("flat_color", flat), flat) << m.name;
+    }
   }
 }
 
