@@ -103,7 +103,9 @@ void addMutantsCommand(CLI::App& app) {
       "what it imitates, its status (killed | survived | equivalent: catalogued with an argument that GL allows\n"
       "it), the scenes that killed it and its unexplained pixels per scene; false_alarms (unexplained pixels of the\n"
       "unmodified backend), killed_percent and runtime_seconds. Progress goes to stderr. Exit 1 when a\n"
-      "non-equivalent mutant survives or the unmodified backend raises a false alarm. See docs/mutants.md.");
+      "non-equivalent mutant survives, an equivalent one is killed (the verdict rejects what GL allows), or the\n"
+      "unmodified backend raises a false alarm. `crosscheck --mutant NAME` shows one kill pixel by pixel.\n"
+      "See docs/mutants.md.");
   cmd->add_option("--scenes", a->scenes, "Comma-separated built-in scenes (default: every scene of `tessera scenes`)");
   cmd->add_option("--mutants", a->mutants,
                   "Comma-separated mutant names (default: the whole catalogue; --list shows it)");
