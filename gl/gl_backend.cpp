@@ -12,6 +12,7 @@
 #include "gl/gl_api.h"
 #include "gl/gl_debug.h"
 #include "gl/gl_enums.h"
+#include "gl/gl_mutation.h"
 #include "gl/gl_programs.h"
 #include "gl/gl_resources.h"
 #include "gl/gl_state.h"
@@ -158,7 +159,9 @@ struct GlBackend::Impl {
   void apply(const CommandList& l, const UploadTexture& c) { res.uploadTexture(c, l.bytes(c.data)); }
   void apply(const CommandList&, const CreateBuffer& c) { res.createBuffer(c.id, c.size); }
   void apply(const CommandList& l, const UploadBuffer& c) { res.uploadBuffer(c, l.bytes(c.data)); }
-  void apply(const CommandList&, const CreateSampler& c) { res.createSampler(c.id, c.state); }
+  void apply(const CommandList&, const CreateSampler& c) {
+    res.createSampler(c.id, options.mutation ? options.mutation->applyToState(c.state) : c.state);
+  }
   void apply(const CommandList&, const CreateProgram& c) {
     if (programs.size() <= c.id) programs.resize(size_t(c.id) + 1);
     programs[c.id] = compiler.acquire(c.name, counts.internal_uniform_updates);
@@ -386,6 +389,7 @@ struct GlBackend::Impl {
     const auto& cmds = cl.commands();
     for (commandIndex = 0; commandIndex < cmds.size(); ++commandIndex) {
       std::visit([&](const auto& c) { apply(cl, c); }, cmds[commandIndex]);
+      if (options.mutation) options.mutation->applyToState(cmds[commandIndex]);
       if (options.debug) checkErrors();
     }
     glFinish();
@@ -450,6 +454,7 @@ std::unique_ptr<GlBackend> GlBackend::create(const GlOptions& options) {
   m.fbos.configure(m.dsa);
   // KHR_debug is GL 4.3; a 3.3 context without it still checks glGetError after every command.
   if (options.debug && (m.dsa || ctx.hasExtension("GL_KHR_debug"))) m.debugLog.install();
+  if (options.mutation) m.compiler.setMutation(options.mutation);
   pinContextState(m.dsa);
   if (m.dsa) {
     glGetIntegerv(GL_MAX_VERTEX_ATTRIB_RELATIVE_OFFSET, &m.maxRelativeOffset);
@@ -465,6 +470,13 @@ std::unique_ptr<GlBackend> GlBackend::create(const GlOptions& options) {
 
 const GlInfo& GlBackend::info() const { return impl_->context->info(); }
 const GlOptions& GlBackend::options() const { return impl_->options; }
+
+void GlBackend::setMutation(const Mutation* mutation) {
+  impl_->context->makeCurrent();
+  impl_->compiler.setMutation(mutation);
+  pinContextState(impl_->dsa);  // undoes what the previous mutation changed in state pinned once per context
+  impl_->options.mutation = mutation;
+}
 
 void GlBackend::execute(const CommandList& list, std::string_view frameName) {
   using Clock = std::chrono::steady_clock;

@@ -36,6 +36,8 @@
 
 namespace tessera::gl {
 
+struct Mutation;  // gl/gl_mutation.h
+
 struct GlOptions {
   // >= 0: sets LP_NUM_THREADS (llvmpipe rasterizer threads; 0 = rasterize on the calling thread).
   int lpThreads = -1;
@@ -58,6 +60,8 @@ struct GlOptions {
   // The EGL platform: "" = surfaceless, else device; "surfaceless" or "device" (EGL_EXT_platform_device,
   // the platform of NVIDIA / AMD / Intel drivers, which have no surfaceless platform) forces one.
   std::string eglPlatform;
+  // A deliberate fault for mutation testing (gl/gl_mutation.h, `tessera mutants`); nullptr = none.
+  const Mutation* mutation = nullptr;
 };
 
 // GL calls issued by the last execute(). The first eight mirror commands one to one, so for a valid
@@ -107,6 +111,9 @@ class GlBackend {
 
   const GlInfo& info() const;
   const GlOptions& options() const;
+  // Replaces options().mutation for the next execute(): drops every compiled twin (they recompile
+  // with the new mutation's edits) and re-pins the context state a mutation may have changed.
+  void setMutation(const Mutation* mutation);
 
   // Validates the list against options().limits (validateOrThrow: Error naming `frameName` and the
   // command index) before creating any GL object, then replays it and waits for GL to finish

@@ -97,6 +97,11 @@ void ProgramCompiler::release() {
   cache_.clear();
 }
 
+void ProgramCompiler::setMutation(const Mutation* mutation) {
+  release();
+  mutation_ = mutation;
+}
+
 size_t ProgramCompiler::objectCount() const {
   size_t n = 0;
   for (const auto& [name, s] : cache_) n += size_t(s.vs != 0) + size_t(s.gs != 0) + size_t(s.fs != 0);
@@ -129,9 +134,11 @@ void ProgramCompiler::recycle(const LinkedProgram& p) {
 
 const ProgramCompiler::Stages& ProgramCompiler::stages(std::string_view name) {
   if (auto it = cache_.find(name); it != cache_.end()) return it->second;
-  const std::string_view twin = glslSource(name);
-  if (twin.empty())
+  const std::string_view source = glslSource(name);
+  if (source.empty())
     throw Error("program \"" + std::string(name) + "\" has no GLSL twin (" + fileOf(name) + " is not embedded)");
+  // A mutation edits the 4.50 twin as written (gl_mutation.h); the dialect rewrite then applies to it.
+  const std::string twin = mutation_ ? mutation_->applyToSource(name, source) : std::string(source);
   RewrittenTwin rewritten = rewriteTwin(fileOf(name), twin, dialect_);
   const std::string_view text = rewritten.text;
   Stages s;

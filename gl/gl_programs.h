@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "gl/gl_api.h"
+#include "gl/gl_mutation.h"
 #include "gl/glsl_dialect.h"
 #include "raster/program.h"
 
@@ -85,6 +86,9 @@ class ProgramCompiler {
   void release();
   // Program and shader objects held.
   size_t objectCount() const;
+  // Twins compile with this mutation's source edits from now on (nullptr: as written); releases
+  // every cached program and shader so that nothing compiled before is reused.
+  void setMutation(const Mutation* mutation);
 
  private:
   struct Stages {
@@ -97,6 +101,7 @@ class ProgramCompiler {
   std::map<std::string, std::vector<LinkedProgram>, std::less<>> free_;
   GlslDialect dialect_;
   bool dsa_ = true, interfaceQuery_ = true;
+  const Mutation* mutation_ = nullptr;
 };
 
 }  // namespace tessera::gl

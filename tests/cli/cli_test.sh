@@ -379,6 +379,17 @@ PY
     refused 2 "--model-budget-textures" "$tessera" mta build "$src/data/railway.glb" -o tree.mta --model-budget-textures 1KiB --quiet
     refused 2 "--model-budget-instances" "$tessera" mta build "$src/data/railway.glb" -o tree.mta --model-budget-instances 0
     ;;
+  mutants_table_names_the_killing_scene)
+    # array_layers samples layers 0.7, 1.8 and 2.7, where floor(r) and floor(r + 1/2) differ: layer_floor
+    # must be killed there, and the unmodified backend must raise no alarm (docs/mutants.md).
+    "$tessera" mutants --strict --scenes array_layers,provoking_vertex --mutants layer_floor --report rep > m.json 2> m.err \
+      || fail "mutants failed: $(cat m.err)"
+    [ "$(json_field m.json "['mutants'][0]['killed_by']")" = "['array_layers']" ] || fail "layer_floor: $(cat m.json)"
+    [ "$(json_field m.json "['false_alarms']['array_layers']")" = 0 ] || fail "a false alarm: $(cat m.json)"
+    for f in report.json index.html; do [ -s "rep/$f" ] || fail "no rep/$f"; done
+    grep -q "layer_floor" m.err || fail "no progress on stderr"
+    refused 2 "unknown mutant 'nope'" "$tessera" mutants --mutants nope
+    ;;
   *) fail "unknown case $case_name" ;;
 esac
 echo "ok: $case_name"

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "gl/gl_backend.h"
+#include "gl/gl_mutation.h"
 #include "raster/cpu_backend.h"
 #include "raster/serialize.h"
 #include "raster/validate.h"
@@ -47,7 +48,7 @@ CommandList loadFrame(const std::string& what, const std::string& size) {
 }
 
 struct CrossArgs {
-  std::string frame, size, report, backends = "cpu,gl";
+  std::string frame, size, report, backends = "cpu,gl", mutant;
   int threads = 0;
   bool strict = false, noBisect = false;
   ResourceLimits limits;
@@ -76,6 +77,8 @@ void runCrosscheck(const CrossArgs& a) {
     go.strict = a.strict;
     if (a.threads > 0) go.lpThreads = a.threads;
     go.limits = a.limits;
+    if (!a.mutant.empty() && !(go.mutation = gl::findMutation(a.mutant)))
+      throw Error("--mutant '" + a.mutant + "': no such mutant (`tessera mutants --list` names them)");
     glb = gl::GlBackend::create(go);
   }
   std::optional<verify::ExpectationSet> expectations;
@@ -168,6 +171,7 @@ void addVerifyCommands(CLI::App& app) {
   cross->add_flag("--stability", ca->stability,
                   "Also render the GL side in child processes under other conditions (repeat, LP_NUM_THREADS 1 and N,\n"
                   "one CPU, strict) and report any change as GL nondeterministic / fast-path dependent (JSON \"stability\")");
+  cross->add_option("--mutant", ca->mutant, "Run GL with this deliberate fault of `tessera mutants` (to see why it is killed)");
   cross->callback([ca] { runCrosscheck(*ca); });
 
   auto va = std::make_shared<CrossArgs>();

@@ -9,6 +9,7 @@ void addRenderCommands(CLI::App& app);  // scenes, render, replay, validate (cmd
 void addDemoCommand(CLI::App& app);     // demo (cmd_demo.cpp)
 void addGoldenCommands(CLI::App& app);  // golden check / update (cmd_golden.cpp)
 void addVerifyCommands(CLI::App& app);  // crosscheck, visibility, compare, bench (cmd_verify.cpp)
+void addMutantsCommand(CLI::App& app);  // mutants (cmd_mutants.cpp)
 void addCityCommand(CLI::App& app);     // city (cmd_city.cpp)
 void addMtaCommands(CLI::App& app);     // mta build / info (cmd_mta.cpp), then the three below
 void addMtaRenderCommand(CLI::App* mtaCmd);  // mta render (cmd_mta_render.cpp)

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   tessera::cli::addDemoCommand(app);
   tessera::cli::addGoldenCommands(app);
   tessera::cli::addVerifyCommands(app);
+  tessera::cli::addMutantsCommand(app);
   tessera::cli::addCityCommand(app);
   tessera::cli::addMtaCommands(app);
   try {

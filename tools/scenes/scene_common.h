@@ -22,5 +22,10 @@ void buildBlend(CommandList& cl, int w, int h);
 void buildDepth(CommandList& cl, int w, int h);
 void buildCityBlock(CommandList& cl, int w, int h);
 void buildCityIds(CommandList& cl, int w, int h);
+void buildProvokingVertex(CommandList& cl, int w, int h);
+void buildArrayLayers(CommandList& cl, int w, int h);
+void buildAtlasClip(CommandList& cl, int w, int h);
+void buildLodLevels(CommandList& cl, int w, int h);
+void buildDepthTies(CommandList& cl, int w, int h);
 
 }  // namespace tessera::scenes

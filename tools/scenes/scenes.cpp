@@ -21,6 +21,11 @@ const std::vector<Entry>& entries() {
       {{"depth", "depth: interpenetrating triangles under LESS, then GEQUAL / EQUAL / ALWAYS passes", 192, 192}, buildDepth},
       {{"city_block", "a textured city block: 256 facade textures, depth, ~60k triangles, one bind per facade", 320, 240}, buildCityBlock},
       {{"city_ids", "the city block through the object_id program into two R32UI targets (object id, primitive id)", 320, 240}, buildCityIds},
+      {{"provoking_vertex", "flat varyings: object_id with a different id on each vertex, so every pixel shows the provoking (last) vertex", 64, 64}, buildProvokingVertex},
+      {{"array_layers", "array layer selection: texture-array lookups at fractional layers 0.3 .. 2.7, rounded (not truncated) to a layer", 192, 32}, buildArrayLayers},
+      {{"atlas_clip", "render-to-texture-atlas clipping: clip distances from the undisplaced position cut a quad that the displacement moves inside", 64, 64}, buildAtlasClip},
+      {{"lod_levels", "LOD without rho freedom: screen-aligned quads of constant isotropic lambda (0.25 .. 1.7) over a texture with one tint per level, trilinear and nearest-mip", 128, 64}, buildLodLevels},
+      {{"depth_ties", "exact depth ties: sloped quads redrawn with the same vertices under LESS / LEQUAL / GREATER / GEQUAL, so only the non-strict functions pass", 160, 96}, buildDepthTies},
   };
   return e;
 }
