@@ -208,6 +208,9 @@ std::unique_ptr<EglContext> EglContext::create(bool debug) {
   GLint flags = 0;
   glGetIntegerv(GL_CONTEXT_FLAGS, &flags);
   i.debugContext = (flags & GL_CONTEXT_FLAG_DEBUG_BIT) != 0;
+  GLint subpixelBits = 0;
+  glGetIntegerv(GL_SUBPIXEL_BITS, &subpixelBits);
+  i.subpixelBits = subpixelBits;
   i.cpu = readCpuCaps();
   return c;
 }

@@ -83,6 +83,7 @@ nlohmann::json GlInfo::toJson() const {
           {"glsl_version", glslVersion},
           {"mesa_version", mesaVersion},
           {"debug_context", debugContext},
+          {"subpixel_bits", subpixelBits},
           {"env", e},
           {"cpu_caps",
            {{"sse4_1", cpu.sse4_1}, {"avx", cpu.avx}, {"avx2", cpu.avx2}, {"fma", cpu.fma}, {"avx512f", cpu.avx512f}}}};

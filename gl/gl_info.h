@@ -26,6 +26,7 @@ struct GlInfo {
   std::string vendor, renderer, version, glslVersion;
   std::string mesaVersion;  // "22.3.6", or "" when GL_VERSION names no Mesa
   bool debugContext = false;
+  int subpixelBits = 0;  // GL_SUBPIXEL_BITS (GL 4.6 §14.5: at least 4); 0 = not queried
   // The llvmpipe switches as they were when the process initialised its EGL display (llvmpipe reads
   // them then, once); nullopt = unset.
   std::vector<std::pair<std::string, std::optional<std::string>>> env;

@@ -10,6 +10,7 @@
 #include <map>
 
 #include "raster/provenance.h"
+#include "raster/tolerances.h"
 #include "raster/rast.h"
 #include "raster/setup.h"
 #include "raster/validate.h"
@@ -147,6 +148,7 @@ struct CpuBackend::Impl {
     targetBound = true;
     scene.begin(resolveTarget(t));
     scene.provenance = options.provenance;
+    scene.edgeMarginSub = tolerance::edgeMarginSub(options.otherSubpixelBits);
     if (options.provenance)
       for (TextureData* c : scene.target.color)
         if (c && !c->prov) c->prov = std::make_shared<Provenance>(*c);

@@ -25,6 +25,9 @@ struct CrosscheckOptions {
   bool bisect = true;  // on failure, find the first diverging draw
   bool selfCheck = false;  // "--backends cpu,cpu": judge the oracle's fast path against its own provenance
   ResourceLimits limits;   // the oracle's frame budget (the GL backend has its own: GlOptions::limits)
+  // GL_SUBPIXEL_BITS of the other side, for the edge margin (tolerance::edgeMarginSub). 0: taken from
+  // the GL context (crosscheck with a GlBackend), the oracle's 8 for the self-check, else GL's minimum 4.
+  int otherSubpixelBits = 0;
 };
 
 struct ImageVerdict {

@@ -22,5 +22,6 @@ void buildBlend(CommandList& cl, int w, int h);
 void buildDepth(CommandList& cl, int w, int h);
 void buildCityBlock(CommandList& cl, int w, int h);
 void buildCityIds(CommandList& cl, int w, int h);
+void buildFarVertices(CommandList& cl, int w, int h);
 
 }  // namespace tessera::scenes
