@@ -261,6 +261,18 @@ inline void setTag(Candidate& c, const EdgeTag& t) {
 void addCandidate(const ChannelKind& k, std::vector<Candidate>& set, const Candidate& c) {
   for (const Candidate& o : set)
     if (sameTags(o, c) && boxInside(k, c, o)) return;
+  // The same box under other edge assumptions: one candidate that keeps only the assumptions both
+  // share (dropping a tag only makes the candidate more permissive).
+  for (Candidate& o : set)
+    if (sameBox(k, o, c)) {
+      Candidate m = o;
+      m.tagCount = 0;
+      for (int i = 0; i < o.tagCount; ++i)
+        for (int j = 0; j < c.tagCount; ++j)
+          if (o.tags[size_t(i)] == c.tags[size_t(j)]) m.tags[m.tagCount++] = o.tags[size_t(i)];
+      o = m;
+      return;
+    }
   std::erase_if(set, [&](const Candidate& o) { return sameTags(o, c) && boxInside(k, o, c); });
   set.push_back(c);
 }
@@ -362,7 +374,8 @@ void updatePixel(TextureData& tex, const TargetView& tv, uint32_t layer, int32_t
   stored = std::move(after);
   for (int ch = 0; ch < k.n; ++ch) storeChannel(k, lo, ch, hull.lo[ch], false), storeChannel(k, hi, ch, hull.hi[ch], true);
 
-  bool exact = stored.empty();
+  // Exact when every candidate is the oracle's value (edge tags may remain for later fragments).
+  bool exact = true;
   for (int ch = 0; ch < k.n && exact; ++ch) exact = hull.lo[ch] == newVal[ch] && hull.hi[ch] == newVal[ch];
   if (blend.enabled || u.ambiguous) classes |= dstCls;
   if (!u.keepValue && !u.ambiguous) classes = dstCls;
