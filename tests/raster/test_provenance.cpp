@@ -453,3 +453,58 @@ TEST(ProvenanceScenes, BlendClassesEveryPixelOfTheTwentyBlendedQuadsAndNoEdgeTie
   EXPECT_EQ(expected, 204 * 26 * 4);
   EXPECT_EQ(blended, expected);
 }
+
+namespace {
+// A 16 x 16 frame filled by one "textured" quad over a 16 x 16 mipmapped texture of one-texel
+// vertical stripes (black, white), with s from 0 to 1.25 across and t = 1/2: 1.25 texels per pixel,
+// lambda = log2(1.25) = 0.32, between the mag/min switch points c = 0 and c = 1/2, 1/16 or more from both.
+CommandList switchFrame(Filter mag) {
+  CommandList cl;
+  RenderTarget t;
+  t.color[0] = createTarget(cl, Format::RGBA8, 16, 16);
+  cl.setRenderTarget(t);
+  cl.setViewport({0, 0, 16, 16});
+  cl.clearColor(0, {0, 0, 0, 0});
+  RgbaImage img;
+  img.width = img.height = 16;
+  img.rgba.resize(16 * 16 * 4);
+  for (uint32_t y = 0; y < 16; ++y)
+    for (uint32_t x = 0; x < 16; ++x)
+      img.set(x, y, x % 2 ? std::array<uint8_t, 4>{255, 255, 255, 255} : std::array<uint8_t, 4>{0, 0, 0, 255});
+  cl.bindTexture(0, uploadTexture(cl, img, true));
+  SamplerState s;
+  s.minFilter = Filter::NearestMipmapNearest;
+  s.magFilter = mag;
+  cl.bindSampler(0, cl.createSampler(s));
+  Mesh m;
+  // t is constant, so rho = |ds/dx| exactly under every legal rho rule (GL 4.6 eq. 8.7's bounds meet).
+  m.quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, {0, 0.5f, 0, 0}, {1.25f, 0.5f, 0, 0}, {1.25f, 0.5f, 0, 0},
+         {0, 0.5f, 0, 0});
+  const uint32_t n = bindMesh(cl, m);
+  cl.useProgram(cl.createProgram("textured"));
+  setMatrix(cl, 0, glm::mat4(1.0f));
+  setTexturedDefaults(cl);
+  cl.drawIndexed(0, n);
+  return cl;
+}
+}  // namespace
+
+TEST(ProvenanceClasses, TheHalfSwitchPointIsALegalAlternativeOnlyForMagLinearWithNearestMipmaps) {
+  // GL 4.6 §8.14: with mag LINEAR and min NEAREST_MIPMAP_NEAREST the switch point may be c = 1/2, so at
+  // lambda = 0.32 GL may magnify: LINEAR between a black and a white texel gives greys where the
+  // oracle (c = 0: NEAREST on level 0) gives 0 or 255. Those pixels must be LOD_NEAR_SWITCH with an
+  // interval that reaches the grey. With mag NEAREST both switch points give NEAREST on
+  // level 0: no LOD_NEAR_SWITCH anywhere.
+  const ProvImage lin = renderProvenance(switchFrame(Filter::Linear));
+  const ProvImage near = renderProvenance(switchFrame(Filter::Nearest));
+  int grey = 0;
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) {
+      ASSERT_TRUE(lin.val(x, y) == 0 || lin.val(x, y) == 255) << x << "," << y;
+      ASSERT_EQ(near.classes(x, y) & kLodNearSwitch, 0) << x << "," << y;
+      if ((lin.classes(x, y) & kLodNearSwitch) && lin.high(x, y) - lin.low(x, y) >= 31) ++grey;
+    }
+  // The texel coordinate 1.25 (x + 1/2) - 1/2 has the fraction 1/8, 3/8, 5/8 or 7/8: LINEAR moves the
+  // nearest texel's 0 or 255 by 1/8 or 3/8 of 255 (32 or 96) at every pixel.
+  EXPECT_EQ(grey, 16 * 16);
+}
