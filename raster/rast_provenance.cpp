@@ -1,22 +1,24 @@
 // Provenance-mode rasterization of one triangle in one tile (see rast.h and provenance.h).
 //
 // The value path is the same as the fast path: the same exact coverage, interpolation, depth test and
-// writeFragment. Around it, this file records for every touched pixel the interval of results that GL
+// writeFragment. Around it, this file records for every touched pixel the candidate results that GL
 // allows, and why:
-// - EDGE_TIE / CLIP_EDGE: the centre lies within the edge margin, so another legal snapping may cover
-//   it or not. Both outcomes enter the interval.
-// - DEPTH_NEAR_EQUAL: the depth test is within the depth tolerance of flipping. Both outcomes enter.
-// - the program's output interval: three runs (lower bound, upper bound, value) with the sampler in
+// - EDGE_TIE / CLIP_EDGE: the centre lies within the edge margin (GL's snapping, and for an edge with
+//   an endpoint made by clipping, GL's float clipping), so another legal implementation may cover it
+//   or not: every candidate forks into "written" and "not written". Near an edge shared with another
+//   triangle the two are correlated by edge tags (no gap, no double hit).
+// - DEPTH_NEAR_EQUAL: the depth test is within the depth tolerance of flipping: the same fork.
+// - the program's output box: three runs (lower bound, upper bound, value) with the sampler in
 //   interval mode, widened by the output-rounding tolerance.
-// - BLEND_PRECISION: blending is evaluated at the 16 corners of (src, src alpha, dst, dst alpha), then
-//   widened by +-2.5 LSB for unorm.
+// - BLEND_PRECISION: blending is evaluated at the 16 corners of (src, src alpha, dst, dst alpha) per
+//   destination candidate, then widened by +-2.5 LSB for unorm.
 // The tolerances are in raster/tolerances.h, each derived in docs/crosscheck.md.
 #include <algorithm>
 #include <bit>
-#include <vector>
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <vector>
 
 #include "raster/fragops.h"
 #include "raster/provenance.h"

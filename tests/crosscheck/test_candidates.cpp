@@ -78,9 +78,8 @@ CommandList whiteTriangle() {
 
 TEST(Candidates, ADifferingPixelWithoutAClassIsUnexplainedEvenInsideAWideInterval) {
   Rendered r = renderScene("depth");
-  const auto u = findPixels(r.w * r.h, 1, [&](size_t i) {
-    return classesOf(r, i) == 0 && r.pixels[i * 4] > 0 && r.pixels[i * 4] < 255;
-  });
+  const auto u = findPixels(
+      r.w * r.h, 1, [&](size_t i) { return classesOf(r, i) == 0 && r.pixels[i * 4] > 0 && r.pixels[i * 4] < 255; });
   ASSERT_EQ(u.size(), 1u) << "the depth scene has unclassed pixels with a red byte inside 0..255";
   // Widen the stored interval of that pixel to everything; its class stays empty.
   const size_t si = storeIndex(r, u[0]);
