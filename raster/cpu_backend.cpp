@@ -92,6 +92,7 @@ struct CpuBackend::Impl {
   RasterState raster;
   RenderTarget target;
   bool targetBound = false;
+  uint64_t drawSerial = 0;  // draws issued so far (provenance: DrawState::drawSerial)
 
   Scene scene;
   PipelineStats stats;
@@ -234,6 +235,7 @@ struct CpuBackend::Impl {
     if (triCount == 0) return;
     const uint32_t stateIndex = uint32_t(scene.states.size());
     scene.states.push_back(snapshot());
+    scene.states.back()->drawSerial = drawSerial++;
     const DrawState& ds = *scene.states.back();
 
     // Vertex indices of the draw, then the distinct vertices to shade. Shading every index of the

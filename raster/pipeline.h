@@ -27,6 +27,7 @@ struct DrawState {
   int varyings = 0;
   int colorOutputs = 1;
   Rect clampRect;  // viewport ∩ scissor ∩ target of the draw (provenance mode widens bboxes within it)
+  uint64_t drawSerial = 0;  // provenance: the draw's number in the list (edge tags correlate one draw only)
 };
 
 // A triangle after clipping, snapping and setup. Coordinates are in sub-pixels (8 fractional bits)

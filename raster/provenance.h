@@ -48,8 +48,9 @@ std::string_view ambiguityClassName(int bit);
 
 // A shared-edge constraint carried by a candidate: the candidate assumed that the triangle on `side`
 // of the edge `key` (a hash of its two snapped endpoints) did (`covered`) or did not produce the
-// fragment. A later triangle near the same edge on the other side must do the opposite; one on the
-// same side (the same edge rasterized again) must do the same (GL's invariance, Appendix A).
+// fragment. A later triangle of the same draw near the same edge on the other side must do the
+// opposite; one on the same side (the same edge rasterized again) must do the same (GL's invariance,
+// Appendix A). The key includes the draw.
 struct EdgeTag {
   uint64_t key = 0;
   uint8_t side = 0;

@@ -407,8 +407,10 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
     const int j = (i + 1) % 3, k = (i + 2) % 3;
     const bool forward = t.vx[j] < t.vx[k] || (t.vx[j] == t.vx[k] && t.vy[j] < t.vy[k]);
     const int p0 = forward ? j : k, p1 = forward ? k : j;
+    // The draw is part of the key: GL guarantees identical snapped positions for identical inputs to
+    // one program (invariance, Appendix A), not across programs without `invariant gl_Position`.
     uint64_t h = 0x9e3779b97f4a7c15ull;
-    for (int64_t v : {t.vx[p0], t.vy[p0], t.vx[p1], t.vy[p1]}) {
+    for (int64_t v : {int64_t(ds.drawSerial), t.vx[p0], t.vy[p0], t.vx[p1], t.vy[p1]}) {
       h ^= uint64_t(v) + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
       h *= 0xbf58476d1ce4e5b9ull;
       h ^= h >> 31;
