@@ -10,6 +10,7 @@
 #include <map>
 
 #include "raster/provenance.h"
+#include "raster/tolerances.h"
 #include "raster/rast.h"
 #include "raster/setup.h"
 #include "raster/validate.h"
@@ -91,6 +92,7 @@ struct CpuBackend::Impl {
   RasterState raster;
   RenderTarget target;
   bool targetBound = false;
+  uint64_t drawSerial = 0;  // draws issued so far (provenance: DrawState::drawSerial)
 
   Scene scene;
   PipelineStats stats;
@@ -147,6 +149,7 @@ struct CpuBackend::Impl {
     targetBound = true;
     scene.begin(resolveTarget(t));
     scene.provenance = options.provenance;
+    scene.edgeMarginSub = tolerance::edgeMarginSub(options.otherSubpixelBits);
     if (options.provenance)
       for (TextureData* c : scene.target.color)
         if (c && !c->prov) c->prov = std::make_shared<Provenance>(*c);
@@ -232,6 +235,7 @@ struct CpuBackend::Impl {
     if (triCount == 0) return;
     const uint32_t stateIndex = uint32_t(scene.states.size());
     scene.states.push_back(snapshot());
+    scene.states.back()->drawSerial = drawSerial++;
     const DrawState& ds = *scene.states.back();
 
     // Vertex indices of the draw, then the distinct vertices to shade. Shading every index of the

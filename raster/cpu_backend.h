@@ -25,6 +25,9 @@ struct RenderOptions {
   int threads = 0;          // 0 = all hardware threads
   bool provenance = false;  // also record per-pixel intervals and ambiguity classes (provenance.h)
   ResourceLimits limits;    // execute() refuses a list over limits.frameBytes before allocating (validate.h)
+  // Provenance: GL_SUBPIXEL_BITS of the implementation that will be judged against the intervals
+  // (tolerance::edgeMarginSub). GL's minimum, 4, when it is not known.
+  int otherSubpixelBits = 4;
 };
 
 // One presented image: attachment `attachment` of the final target at (level, layer).

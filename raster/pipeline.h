@@ -27,6 +27,7 @@ struct DrawState {
   int varyings = 0;
   int colorOutputs = 1;
   Rect clampRect;  // viewport ∩ scissor ∩ target of the draw (provenance mode widens bboxes within it)
+  uint64_t drawSerial = 0;  // provenance: the draw's number in the list (edge tags correlate one draw only)
 };
 
 // A triangle after clipping, snapping and setup. Coordinates are in sub-pixels (8 fractional bits)
@@ -48,6 +49,20 @@ struct TriSetup {
   uint32_t drawState;               // index into Scene::states
   bool frontFacing;
   bool clipped;                     // made by clipping: its edges may sit elsewhere in GL (CLIP_EDGE)
+  // Provenance only: the snapped window position of each vertex (sub-pixels, counter-clockwise
+  // order) to recognise an edge that two triangles share (EdgeTag in provenance.h); per edge (opposite
+  // vertex i) its kind and the extra distance (sub-pixels) by which GL may place it elsewhere because
+  // clipping computed an endpoint (docs/crosscheck.md, CLIP_EDGE).
+  int64_t vx[3], vy[3];
+  uint8_t edgeKind[3];  // EdgeKind
+  double clipMarginSub[3];
+};
+
+// What made an edge of a triangle (provenance mode).
+enum EdgeKind : uint8_t {
+  kEdgeOriginal = 0,  // both endpoints are vertices of the primitive
+  kEdgeInternal = 1,  // a diagonal of the fan that triangulates a clipped polygon (no boundary)
+  kEdgeClipped = 2,   // at least one endpoint was made by clipping
 };
 
 enum class TileOp : uint8_t { Triangle, ClearColor, ClearDepth };
@@ -75,6 +90,7 @@ struct TargetView {
 struct Scene {
   TargetView target;
   bool provenance = false;  // track per-pixel intervals (provenance.h); bins use 1-px-wider bboxes
+  double edgeMarginSub = 0.0;  // provenance: tolerance::edgeMarginSub of the judged implementation
   std::vector<std::unique_ptr<DrawState>> states;
   std::vector<TriSetup> tris;
   std::vector<ClearCmd> clears;

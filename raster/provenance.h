@@ -1,7 +1,14 @@
-// Per-pixel provenance: for each pixel of a rendered target, the interval of values that the GL
-// spec allows, and the classes of freedom that widen it. The GL cross-check accepts a GL pixel iff it
-// lies in its interval. A pixel with no class has an interval of exactly one value, so it must match
-// bit for bit.
+// Per-pixel provenance: for each pixel of a rendered target, the set of whole results that the GL
+// spec allows (candidates, each a [lo, hi] box per channel), and the classes of freedom that made
+// them. The GL cross-check accepts a GL pixel iff it lies in one candidate's box. A pixel with no
+// class has one candidate of exactly one value, so it must match bit for bit.
+//
+// Discrete freedoms (a fragment written or not at an edge or depth tie) fork the candidate set; the
+// continuous ones (rounding, blending and filtering precision) widen each candidate's own box. The
+// lo / hi images hold the hull of the set (what a later lookup of the texture reads, and what the
+// reports show). A shared edge's two triangles are correlated through edge tags: of two triangles on
+// either side of one edge with identical endpoints exactly one produces a fragment at a centre near it
+// (GL 4.6 §14.6.1), so a candidate remembers which way its edge went (docs/crosscheck.md).
 //
 // Implements: the ambiguity classes, the interval storage attached to a rendered texture, and the
 // thread-local state through which the sampler reports interval bounds to programs run in
@@ -29,20 +36,52 @@ enum AmbiguityClass : uint16_t {
   kSubtexelNearHalf = 1u << 3, // the texel-coordinate tolerance changes the texels or weights used
   kLayerTie = 1u << 4,         // r + 1/2 is within tolerance of an integer
   kDepthNearEqual = 1u << 5,   // the depth test is within the depth tolerance of flipping
-  kOobFetch = 1u << 6,         // an out-of-range buffer fetch: the value is undefined in GL
+  kOobFetch = 1u << 6,         // no longer set: the GLSL twins define an out-of-range fetch as vec4(0)
   kHelperDeriv = 1u << 7,      // coarse and fine derivatives give different LODs
   kFilterPrecision = 1u << 8,  // unorm filtering precision (+-1 LSB on filtered lookups)
   kBlendPrecision = 1u << 9,   // unorm blending precision (+-1 LSB per blended write)
   kOutputRounding = 1u << 10,  // the unrounded output is within interpolation tolerance of a rounding step
-  kClassCount = 11
+  kInputInterval = 1u << 11,   // a sampled texture was rendered here and its texels carry their own freedoms
+  kClassCount = 12
 };
 std::string_view ambiguityClassName(int bit);
 
+// A shared-edge constraint carried by a candidate: the candidate assumed that the triangle on `side`
+// of the edge `key` (a hash of its two snapped endpoints) did (`covered`) or did not produce the
+// fragment. A later triangle of the same draw near the same edge on the other side must do the
+// opposite; one on the same side (the same edge rasterized again) must do the same (GL's invariance,
+// Appendix A). The key includes the draw.
+struct EdgeTag {
+  uint64_t key = 0;
+  uint8_t side = 0;
+  bool covered = false;
+  bool operator==(const EdgeTag&) const = default;
+};
+
+// One whole result of a pixel: per channel [lo, hi] in channel units (bytes for unorm, the value for
+// float and uint formats), and the edge constraints under which it was produced.
+struct Candidate {
+  static constexpr int kMaxTags = 2;
+  std::array<double, 4> lo{}, hi{};
+  std::array<EdgeTag, kMaxTags> tags{};
+  uint8_t tagCount = 0;
+};
+
+// The most candidates a pixel keeps. A larger set collapses to its hull (one candidate, no tags),
+// and the pixel is flagged kFallback so reports count it.
+constexpr size_t kMaxCandidates = 16;
+enum PixelFlag : uint8_t { kFallback = 1u << 0 };
+
 // The interval images of one rendered texture: same format and shape as the texture.
 struct Provenance {
-  std::unique_ptr<TextureData> lo, hi;
+  std::unique_ptr<TextureData> lo, hi;  // the hull of each pixel's candidates
   std::vector<std::vector<uint16_t>> classes;  // per level: layers * w * h, bottom row first
+  std::vector<std::vector<uint8_t>> flags;     // per level, same layout: PixelFlag bits
+  // Per level, same layout: the candidates of a pixel whose set is not its hull alone (two or more
+  // candidates, or tags). Empty means one candidate, [lo, hi] of the images.
+  std::vector<std::vector<std::vector<Candidate>>> candidates;
   explicit Provenance(const TextureData& tex);
+  size_t index(const TextureData& tex, uint32_t level, uint32_t layer, uint32_t x, uint32_t y) const;
   uint16_t& cls(const TextureData& tex, uint32_t level, uint32_t layer, uint32_t x, uint32_t y);
 };
 

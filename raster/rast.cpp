@@ -44,7 +44,8 @@ void runClear(const Scene& scene, const ClearCmd& c, TextureData* tex, const Til
   encodeClear(tex->desc.format, c.bits, value);
   // Provenance: a clear is exact, except that GL may convert a unorm clear colour in float32, where
   // c * 255 can round onto a .5 tie (0.9f * 255 = 229.5 in float, 229.4999... exactly): then either
-  // neighbour is legal (OUTPUT_ROUNDING).
+  // neighbour is legal (OUTPUT_ROUNDING). Two candidates, never the range between (there is none
+  // for one byte: the neighbours are adjacent).
   uint8_t clo[16], chi[16];
   std::memcpy(clo, value, 16);
   std::memcpy(chi, value, 16);
@@ -54,7 +55,7 @@ void runClear(const Scene& scene, const ClearCmd& c, TextureData* tex, const Til
     std::memcpy(v, c.bits.data(), sizeof v);
     for (int k = 0; k < channelCount(tex->desc.format); ++k) {
       const double x = (v[k] > 0.0f ? (v[k] < 1.0f ? double(v[k]) : 1.0) : 0.0) * 255.0;
-      const double tol = x * tolerance::kClearRel;  // a float32 product's rounding, with margin
+      const double tol = x * tolerance::kClearRel;  // one float32 rounding of c * 255
       const int lo = std::max(0, int(std::ceil(x - tol - 0.5))), hi = std::min(255, int(std::floor(x + tol + 0.5)));
       if (lo != value[k] || hi != value[k]) ccls = kOutputRounding;
       clo[k] = uint8_t(std::min<int>(lo, value[k])), chi[k] = uint8_t(std::max<int>(hi, value[k]));
@@ -72,7 +73,10 @@ void runClear(const Scene& scene, const ClearCmd& c, TextureData* tex, const Til
         for (int32_t x = x0; x <= x1; ++x) {
           std::memcpy(pv.lo->texel(t.level, layer, uint32_t(x), uint32_t(y)), clo, bpp);
           std::memcpy(pv.hi->texel(t.level, layer, uint32_t(x), uint32_t(y)), chi, bpp);
-          pv.cls(*tex, t.level, layer, uint32_t(x), uint32_t(y)) = ccls;
+          const size_t idx = pv.index(*tex, t.level, layer, uint32_t(x), uint32_t(y));
+          pv.classes[t.level][idx] = ccls;
+          pv.flags[t.level][idx] = 0;
+          pv.candidates[t.level][idx].clear();
         }
       }
     }

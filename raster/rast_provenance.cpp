@@ -1,21 +1,24 @@
 // Provenance-mode rasterization of one triangle in one tile (see rast.h and provenance.h).
 //
 // The value path is the same as the fast path: the same exact coverage, interpolation, depth test and
-// writeFragment. Around it, this file records for every touched pixel the interval of results that GL
+// writeFragment. Around it, this file records for every touched pixel the candidate results that GL
 // allows, and why:
-// - EDGE_TIE / CLIP_EDGE: the centre lies within the edge margin, so another legal snapping may cover
-//   it or not. Both outcomes enter the interval.
-// - DEPTH_NEAR_EQUAL: the depth test is within the depth tolerance of flipping. Both outcomes enter.
-// - the program's output interval: three runs (lower bound, upper bound, value) with the sampler in
+// - EDGE_TIE / CLIP_EDGE: the centre lies within the edge margin (GL's snapping, and for an edge with
+//   an endpoint made by clipping, GL's float clipping), so another legal implementation may cover it
+//   or not: every candidate forks into "written" and "not written". Near an edge shared with another
+//   triangle the two are correlated by edge tags (no gap, no double hit).
+// - DEPTH_NEAR_EQUAL: the depth test is within the depth tolerance of flipping: the same fork.
+// - the program's output box: three runs (lower bound, upper bound, value) with the sampler in
 //   interval mode, widened by the output-rounding tolerance.
-// - BLEND_PRECISION: blending is evaluated at the 16 corners of (src, src alpha, dst, dst alpha), then
-//   widened by +-2.5 LSB for unorm.
+// - BLEND_PRECISION: blending is evaluated at the 16 corners of (src, src alpha, dst, dst alpha) per
+//   destination candidate, then widened by +-2.5 LSB for unorm.
 // The tolerances are in raster/tolerances.h, each derived in docs/crosscheck.md.
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <vector>
 
 #include "raster/fragops.h"
 #include "raster/provenance.h"
@@ -41,7 +44,8 @@ struct FragInterval {
 };
 
 // The fragment interval of attachment `a`, pixel `p`, from the three runs.
-FragInterval fragInterval(const QuadOut (&o)[3], int a, int p, bool uintOut) {
+// posTolPx: how far (pixels) GL's sample may sit from the oracle's on the triangle's plane.
+FragInterval fragInterval(const QuadOut (&o)[3], int a, int p, bool uintOut, double posTolPx) {
   FragInterval f{};
   for (int c = 0; c < 4; ++c) {
     if (uintOut) {
@@ -61,40 +65,96 @@ FragInterval fragInterval(const QuadOut (&o)[3], int a, int p, bool uintOut) {
     const QuadOut& val = o[2];
     const double g = std::fabs(double(val.color[a][1].f[c]) - val.color[a][0].f[c]) +
                      std::fabs(double(val.color[a][2].f[c]) - val.color[a][0].f[c]);
-    f.tol[c] = (std::isfinite(g) ? g * tolerance::kSamplePosPx : 0.0) + std::fabs(v[2]) * tolerance::kInterpRel;
+    f.tol[c] = (std::isfinite(g) ? g * posTolPx : 0.0) + std::fabs(v[2]) * tolerance::kInterpRel;
   }
   return f;
 }
 
+// What one fragment may do to one pixel. Coverage and the depth test are the discrete freedoms: each
+// legal combination is an outcome, and every candidate of the pixel forks into the outcomes that
+// are legal for it (an edge tag can force the coverage outcome, see EdgeTag in provenance.h).
 struct PixelUpdate {
-  bool keepValue;   // the oracle writes this fragment
-  bool ambiguous;   // another legal outcome differs in whether it writes
-  bool dontCare;    // the program used an undefined value
-  uint16_t classes; // classes of the fragment (sampler + coverage + depth)
+  bool covered;      // the oracle covers the centre
+  bool coverTie;     // another legal snapping may flip that (EDGE_TIE / CLIP_EDGE)
+  bool depthPass;    // the oracle's depth test passes
+  bool depthTie;     // another legal depth may flip that (DEPTH_NEAR_EQUAL)
+  bool discarded;    // the program discards the fragment (value run)
+  bool keepValue;    // the oracle writes this fragment
+  bool ambiguous;    // another legal outcome differs in whether it writes
+  bool dontCare;     // the program used an undefined value
+  double posTolPx;   // the sample-position tolerance of the triangle's plane (fragInterval)
+  bool hasEdge;      // coverTie comes from exactly one edge of a triangle made without clipping
+  EdgeTag edge;      // that edge, with covered = true
+  uint16_t classes;  // classes of the fragment (sampler + coverage + depth)
 };
 
-void updateUnorm(TextureData& tex, const TargetView& tv, uint32_t layer, int32_t x, int32_t y, const QuadOut (&o)[3],
-                 int a, int p, const BlendState& blend, const PixelUpdate& u) {
-  const int n = tex.desc.format == Format::RGBA8 ? 4 : 1;
-  Provenance& pv = *tex.prov;
-  uint8_t* val = tex.texel(tv.level, layer, uint32_t(x), uint32_t(y));
-  uint8_t* lo = pv.lo->texel(tv.level, layer, uint32_t(x), uint32_t(y));
-  uint8_t* hi = pv.hi->texel(tv.level, layer, uint32_t(x), uint32_t(y));
-  uint16_t& cls = pv.cls(tex, tv.level, layer, uint32_t(x), uint32_t(y));
-  const uint16_t dstCls = cls;
-  const FragInterval f = fragInterval(o, a, p, false);
-  uint16_t classes = u.classes;
-  int wlo[4], whi[4];
-  if (!blend.enabled) {
-    for (int c = 0; c < n; ++c) {
-      double l = f.lo[c] - f.tol[c], h = f.hi[c] + f.tol[c];
-      if (u.dontCare) l = 0.0, h = 1.0;
-      unormRange(l, h, wlo[c], whi[c]);
-      int tl, th;
-      unormRange(f.lo[c], f.hi[c], tl, th);
-      if (tl != wlo[c] || th != whi[c]) classes |= kOutputRounding;
-    }
+// Whether a fragment that the candidate's coverage outcome `covered` produced is written.
+inline void writeOutcomes(const PixelUpdate& u, bool covered, bool& canWrite, bool& canSkip) {
+  if (!covered || u.discarded) {
+    canWrite = false, canSkip = true;
+    return;
+  }
+  canWrite = u.depthPass || u.depthTie;
+  canSkip = !u.depthPass || u.depthTie;
+}
+
+// The channel layout of a target format for candidate boxes.
+struct ChannelKind {
+  int n;
+  bool unorm, isFloat;
+};
+inline ChannelKind kindOf(Format f) {
+  switch (f) {
+    case Format::RGBA8: return {4, true, false};
+    case Format::R8: return {1, true, false};
+    case Format::RG32F: return {2, false, true};
+    case Format::RGBA32F: return {4, false, true};
+    default: return {1, false, false};  // R32UI
+  }
+}
+
+inline double loadChannel(const ChannelKind& k, const uint8_t* p, int c) {
+  if (k.unorm) return p[c];
+  if (k.isFloat) {
+    float v;
+    std::memcpy(&v, p + 4 * c, 4);
+    return v;
+  }
+  uint32_t v;
+  std::memcpy(&v, p + 4 * c, 4);
+  return v;
+}
+
+inline void storeChannel(const ChannelKind& k, uint8_t* p, int c, double v, bool up) {
+  if (k.unorm) {
+    p[c] = uint8_t(std::clamp(v, 0.0, 255.0));
+  } else if (k.isFloat) {
+    // Outward rounding keeps the float image a superset of the double bound.
+    float f = float(v);
+    if (!up && double(f) > v) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+    if (up && double(f) < v) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+    std::memcpy(p + 4 * c, &f, 4);
   } else {
+    const uint32_t u = uint32_t(std::clamp(v, 0.0, 4294967295.0));
+    std::memcpy(p + 4 * c, &u, 4);
+  }
+}
+
+// A float bound rounded outward to float, as the images hold it.
+inline double floatOutward(double v, bool up) {
+  if (std::isinf(v) || std::isnan(v)) return v;
+  float f = float(v);
+  if (!up && double(f) > v) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+  if (up && double(f) < v) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+  return f;
+}
+
+// The box a written fragment leaves when the pixel held `dst` before.
+void writtenBox(const ChannelKind& k, const FragInterval& f, const PixelUpdate& u, const BlendState& blend,
+                const Candidate& dst, Candidate& out, uint16_t& classes) {
+  out.tagCount = dst.tagCount;
+  out.tags = dst.tags;
+  if (k.unorm && blend.enabled) {
     // Corners of (src colour, src alpha, dst colour, dst alpha) in [lo, hi]: blending is monotone in
     // each of them separately, so its range over the box is attained at a corner.
     double sLo[4], sHi[4], dLo[4] = {0, 0, 0, 1}, dHi[4] = {0, 0, 0, 1};
@@ -102,117 +162,226 @@ void updateUnorm(TextureData& tex, const TargetView& tv, uint32_t layer, int32_t
       sLo[c] = u.dontCare ? 0.0 : f.lo[c] - f.tol[c];
       sHi[c] = u.dontCare ? 1.0 : f.hi[c] + f.tol[c];
     }
-    for (int c = 0; c < n; ++c) dLo[c] = lo[c] / 255.0, dHi[c] = hi[c] / 255.0;
+    for (int c = 0; c < k.n; ++c) dLo[c] = dst.lo[c] / 255.0, dHi[c] = dst.hi[c] / 255.0;
     double bmin[4], bmax[4];
     for (int c = 0; c < 4; ++c) bmin[c] = 1e300, bmax[c] = -1e300;
     for (int corner = 0; corner < 16; ++corner) {
       float src[4];
-      double dst[4], out[4];
+      double d[4], o[4];
       for (int c = 0; c < 4; ++c) {
         const bool alpha = c == 3;
         src[c] = float(((corner >> (alpha ? 1 : 0)) & 1) ? sHi[c] : sLo[c]);
-        dst[c] = ((corner >> (alpha ? 3 : 2)) & 1) ? dHi[c] : dLo[c];
+        d[c] = ((corner >> (alpha ? 3 : 2)) & 1) ? dHi[c] : dLo[c];
       }
-      detail::blend(blend, true, src, dst, out);
-      for (int c = 0; c < 4; ++c) bmin[c] = std::min(bmin[c], out[c]), bmax[c] = std::max(bmax[c], out[c]);
+      detail::blend(blend, true, src, d, o);
+      for (int c = 0; c < 4; ++c) bmin[c] = std::min(bmin[c], o[c]), bmax[c] = std::max(bmax[c], o[c]);
     }
-    for (int c = 0; c < n; ++c) {
-      // GL's blending precision is free. An 8-bit blender (llvmpipe: lp_build_mul_norm) quantizes the
-      // source and both factors to 8 bits and rounds both products: at most 5 half-LSB errors, so
-      // the exact result may move by 2.5 LSB before the final rounding (docs/crosscheck.md).
-      unormRange(bmin[c] - tolerance::kBlendUnorm, bmax[c] + tolerance::kBlendUnorm, wlo[c], whi[c]);
+    for (int c = 0; c < k.n; ++c) {
+      // GL 4.6 §17.3.6.1: blending with at least the destination's precision (8 bits): at most five
+      // half-LSB errors before the final rounding (tolerance::kBlendUnorm, docs/crosscheck.md).
+      int l, h;
+      unormRange(bmin[c] - tolerance::kBlendUnorm, bmax[c] + tolerance::kBlendUnorm, l, h);
+      out.lo[c] = l, out.hi[c] = h;
     }
-    classes |= kBlendPrecision | dstCls;
+    classes |= kBlendPrecision;
+    return;
+  }
+  for (int c = 0; c < k.n; ++c) {
+    if (k.unorm) {
+      double l = f.lo[c] - f.tol[c], h = f.hi[c] + f.tol[c];
+      if (u.dontCare) l = 0.0, h = 1.0;
+      int wl, wh, tl, th;
+      unormRange(l, h, wl, wh);
+      unormRange(f.lo[c], f.hi[c], tl, th);
+      // OUTPUT_ROUNDING: the tolerance reached another byte, or one value sits on an exact .5 tie.
+      if (tl != wl || th != wh || (tl != th && f.lo[c] == f.hi[c])) classes |= kOutputRounding;
+      out.lo[c] = wl, out.hi[c] = wh;
+    } else if (k.isFloat) {
+      double l = u.dontCare ? -std::numeric_limits<double>::infinity() : f.lo[c] - f.tol[c];
+      double h = u.dontCare ? std::numeric_limits<double>::infinity() : f.hi[c] + f.tol[c];
+      if (blend.enabled) {
+        // Blended float targets are not bounded here (no built-in scene blends into one): any value
+        // is accepted and the pixel is classed, so the gap is visible in every report.
+        classes |= kBlendPrecision;
+        l = -std::numeric_limits<double>::infinity(), h = std::numeric_limits<double>::infinity();
+      }
+      out.lo[c] = floatOutward(l, false), out.hi[c] = floatOutward(h, true);
+    } else {
+      // R32UI: the ids the program may output (one id for the built-in programs), never a range
+      // from the destination.
+      out.lo[c] = u.dontCare ? 0.0 : f.lo[c];
+      out.hi[c] = u.dontCare ? 4294967295.0 : f.hi[c];
+    }
+  }
+}
+
+inline bool sameBox(const ChannelKind& k, const Candidate& a, const Candidate& b) {
+  for (int c = 0; c < k.n; ++c)
+    if (a.lo[c] != b.lo[c] || a.hi[c] != b.hi[c]) return false;
+  return true;
+}
+inline bool boxInside(const ChannelKind& k, const Candidate& a, const Candidate& b) {  // a within b
+  for (int c = 0; c < k.n; ++c)
+    if (a.lo[c] < b.lo[c] || a.hi[c] > b.hi[c]) return false;
+  return true;
+}
+inline bool sameTags(const Candidate& a, const Candidate& b) {
+  if (a.tagCount != b.tagCount) return false;
+  for (int i = 0; i < a.tagCount; ++i)
+    if (!(a.tags[size_t(i)] == b.tags[size_t(i)])) return false;
+  return true;
+}
+inline bool containsValue(const ChannelKind& k, const Candidate& a, const double v[4]) {
+  for (int c = 0; c < k.n; ++c)
+    if (!(v[c] >= a.lo[c] && v[c] <= a.hi[c]) && !(std::isnan(v[c]) && std::isnan(a.lo[c]))) return false;
+  return true;
+}
+
+// The candidate's tag for `key`, or null.
+inline const EdgeTag* findTag(const Candidate& c, uint64_t key) {
+  for (int i = 0; i < c.tagCount; ++i)
+    if (c.tags[size_t(i)].key == key) return &c.tags[size_t(i)];
+  return nullptr;
+}
+// Records the outcome at a shared edge; the oldest tag gives way when full (dropping a constraint
+// only makes the candidate more permissive).
+inline void setTag(Candidate& c, const EdgeTag& t) {
+  for (int i = 0; i < c.tagCount; ++i)
+    if (c.tags[size_t(i)].key == t.key) {
+      c.tags[size_t(i)] = t;
+      return;
+    }
+  if (c.tagCount == Candidate::kMaxTags) {
+    for (int i = 1; i < Candidate::kMaxTags; ++i) c.tags[size_t(i - 1)] = c.tags[size_t(i)];
+    --c.tagCount;
+  }
+  c.tags[c.tagCount++] = t;
+}
+
+// Adds `c` to `set` unless a candidate with the same tags already contains its box; drops the ones
+// that `c` contains.
+void addCandidate(const ChannelKind& k, std::vector<Candidate>& set, const Candidate& c) {
+  for (const Candidate& o : set)
+    if (sameTags(o, c) && boxInside(k, c, o)) return;
+  // The same box under other edge assumptions: one candidate that keeps only the assumptions both
+  // share (dropping a tag only makes the candidate more permissive).
+  for (Candidate& o : set)
+    if (sameBox(k, o, c)) {
+      Candidate m = o;
+      m.tagCount = 0;
+      for (int i = 0; i < o.tagCount; ++i)
+        for (int j = 0; j < c.tagCount; ++j)
+          if (o.tags[size_t(i)] == c.tags[size_t(j)]) m.tags[m.tagCount++] = o.tags[size_t(i)];
+      o = m;
+      return;
+    }
+  std::erase_if(set, [&](const Candidate& o) { return sameTags(o, c) && boxInside(k, o, c); });
+  set.push_back(c);
+}
+
+// One fragment at one pixel of one attachment: every candidate forks into the outcomes legal for
+// it, each with its own box; the oracle's value is written as the fast path writes it.
+void updatePixel(TextureData& tex, const TargetView& tv, uint32_t layer, int32_t x, int32_t y, const QuadOut (&o)[3],
+                 int a, int p, const BlendState& blend, const PixelUpdate& u) {
+  const ChannelKind k = kindOf(tex.desc.format);
+  Provenance& pv = *tex.prov;
+  uint8_t* val = tex.texel(tv.level, layer, uint32_t(x), uint32_t(y));
+  uint8_t* lo = pv.lo->texel(tv.level, layer, uint32_t(x), uint32_t(y));
+  uint8_t* hi = pv.hi->texel(tv.level, layer, uint32_t(x), uint32_t(y));
+  const size_t idx = pv.index(tex, tv.level, layer, uint32_t(x), uint32_t(y));
+  uint16_t& cls = pv.classes[tv.level][idx];
+  std::vector<Candidate>& stored = pv.candidates[tv.level][idx];
+  const uint16_t dstCls = cls;
+  const FragInterval f = fragInterval(o, a, p, !k.unorm && !k.isFloat, u.posTolPx);
+
+  // The set before this fragment: the stored candidates, or the one box of the images.
+  std::vector<Candidate> before;
+  if (stored.empty()) {
+    Candidate c;
+    for (int ch = 0; ch < k.n; ++ch) c.lo[ch] = loadChannel(k, lo, ch), c.hi[ch] = loadChannel(k, hi, ch);
+    before.push_back(c);
+  } else {
+    before = stored;
+  }
+  double oldVal[4] = {};
+  for (int ch = 0; ch < k.n; ++ch) oldVal[ch] = loadChannel(k, val, ch);
+
+  uint16_t classes = u.classes;
+  std::vector<Candidate> after;
+  // The candidate that follows the oracle's own chain of outcomes: it must contain the oracle's value.
+  int oracleChain = -1;
+  for (size_t ci = 0; ci < before.size(); ++ci) {
+    const Candidate& c = before[ci];
+    const bool onChain = oracleChain < 0 && containsValue(k, c, oldVal);
+    bool covOptions[2] = {u.covered, u.covered};
+    int nCov = 1;
+    const EdgeTag* tag = u.hasEdge ? findTag(c, u.edge.key) : nullptr;
+    if (u.coverTie) {
+      if (tag) {
+        // The same edge again: the other side must do the opposite, the same side the same.
+        covOptions[0] = tag->side == u.edge.side ? tag->covered : !tag->covered;
+      } else {
+        covOptions[0] = true, covOptions[1] = false, nCov = 2;
+      }
+    }
+    for (int ki = 0; ki < nCov; ++ki) {
+      const bool cov = covOptions[ki];
+      bool canWrite, canSkip;
+      writeOutcomes(u, cov, canWrite, canSkip);
+      Candidate base = c;
+      if (u.hasEdge && u.coverTie) {
+        EdgeTag t = u.edge;
+        t.covered = cov;
+        setTag(base, t);
+      }
+      const bool oracleOutcomeCov = cov == u.covered;
+      if (canSkip) {
+        if (onChain && oracleOutcomeCov && !u.keepValue) oracleChain = int(after.size());
+        addCandidate(k, after, base);
+      }
+      if (canWrite) {
+        Candidate w;
+        writtenBox(k, f, u, blend, base, w, classes);
+        if (onChain && oracleOutcomeCov && u.keepValue) oracleChain = int(after.size());
+        addCandidate(k, after, w);
+      }
+    }
   }
   if (u.keepValue) {
     uint32_t bits[4];
     std::memcpy(bits, o[2].color[a][p].u, sizeof bits);
     writeFragment(tex.desc.format, val, bits, blend);
   }
-  bool exact = true;
-  for (int c = 0; c < n; ++c) {
-    int l = wlo[c], h = whi[c];
-    if (u.ambiguous) l = std::min<int>(l, lo[c]), h = std::max<int>(h, hi[c]);
-    else if (!u.keepValue) l = lo[c], h = hi[c];
-    l = std::min<int>(l, val[c]), h = std::max<int>(h, val[c]);  // the oracle's own value is always legal
-    lo[c] = uint8_t(l), hi[c] = uint8_t(h);
-    exact = exact && l == val[c] && h == val[c];
+  double newVal[4] = {};
+  for (int ch = 0; ch < k.n; ++ch) newVal[ch] = loadChannel(k, val, ch);
+  // The oracle's own value is always legal. Its chain's candidate contains it unless float rounding
+  // of the fragment interval lost it; then that candidate (or the first) grows to include it.
+  bool found = false;
+  for (const Candidate& c : after) found = found || containsValue(k, c, newVal);
+  if (!found && !after.empty()) {
+    Candidate& c = after[size_t(oracleChain >= 0 && size_t(oracleChain) < after.size() ? oracleChain : 0)];
+    for (int ch = 0; ch < k.n; ++ch) c.lo[ch] = std::min(c.lo[ch], newVal[ch]), c.hi[ch] = std::max(c.hi[ch], newVal[ch]);
   }
-  if (u.ambiguous) classes |= dstCls;
+
+  // The hull, for the images (later lookups and the reports), and the fallback past the cap.
+  Candidate hull = after.empty() ? before[0] : after[0];
+  for (const Candidate& c : after)
+    for (int ch = 0; ch < k.n; ++ch) hull.lo[ch] = std::min(hull.lo[ch], c.lo[ch]), hull.hi[ch] = std::max(hull.hi[ch], c.hi[ch]);
+  if (after.size() > kMaxCandidates) {
+    pv.flags[tv.level][idx] |= kFallback;
+    after.clear();
+  } else if (after.size() == 1 && after[0].tagCount == 0) {
+    after.clear();
+  }
+  stored = std::move(after);
+  for (int ch = 0; ch < k.n; ++ch) storeChannel(k, lo, ch, hull.lo[ch], false), storeChannel(k, hi, ch, hull.hi[ch], true);
+
+  // Exact when every candidate is the oracle's value (edge tags may remain for later fragments).
+  bool exact = true;
+  for (int ch = 0; ch < k.n && exact; ++ch) exact = hull.lo[ch] == newVal[ch] && hull.hi[ch] == newVal[ch];
+  if (blend.enabled || u.ambiguous) classes |= dstCls;
   if (!u.keepValue && !u.ambiguous) classes = dstCls;
   cls = exact ? 0 : classes;
-}
-
-void updateFloat(TextureData& tex, const TargetView& tv, uint32_t layer, int32_t x, int32_t y, const QuadOut (&o)[3],
-                 int a, int p, const BlendState& blend, const PixelUpdate& u) {
-  const int n = tex.desc.format == Format::RGBA32F ? 4 : 2;
-  Provenance& pv = *tex.prov;
-  uint8_t* val = tex.texel(tv.level, layer, uint32_t(x), uint32_t(y));
-  uint8_t* lob = pv.lo->texel(tv.level, layer, uint32_t(x), uint32_t(y));
-  uint8_t* hib = pv.hi->texel(tv.level, layer, uint32_t(x), uint32_t(y));
-  uint16_t& cls = pv.cls(tex, tv.level, layer, uint32_t(x), uint32_t(y));
-  float lo[4], hi[4], v[4];
-  std::memcpy(lo, lob, size_t(n) * 4);
-  std::memcpy(hi, hib, size_t(n) * 4);
-  const FragInterval f = fragInterval(o, a, p, false);
-  uint16_t classes = u.classes;
-  double wlo[4], whi[4];
-  for (int c = 0; c < n; ++c) {
-    wlo[c] = u.dontCare ? -std::numeric_limits<double>::infinity() : f.lo[c] - f.tol[c];
-    whi[c] = u.dontCare ? std::numeric_limits<double>::infinity() : f.hi[c] + f.tol[c];
-    if (blend.enabled) {
-      // Blended float targets are not bounded here (no built-in scene blends into one): any value is
-      // accepted and the pixel is classed, so the gap is visible in every report.
-      classes |= kBlendPrecision | cls;
-      wlo[c] = -std::numeric_limits<double>::infinity();
-      whi[c] = std::numeric_limits<double>::infinity();
-    }
-  }
-  if (u.keepValue) {
-    uint32_t bits[4];
-    std::memcpy(bits, o[2].color[a][p].u, sizeof bits);
-    writeFragment(tex.desc.format, val, bits, blend);
-  }
-  std::memcpy(v, val, size_t(n) * 4);
-  bool exact = true;
-  for (int c = 0; c < n; ++c) {
-    double l = wlo[c], h = whi[c];
-    if (u.ambiguous) l = std::min<double>(l, lo[c]), h = std::max<double>(h, hi[c]);
-    else if (!u.keepValue) l = lo[c], h = hi[c];
-    l = std::min<double>(l, v[c]), h = std::max<double>(h, v[c]);
-    lo[c] = float(l), hi[c] = float(h);
-    if (double(lo[c]) > l) lo[c] = std::nextafter(lo[c], -std::numeric_limits<float>::infinity());
-    if (double(hi[c]) < h) hi[c] = std::nextafter(hi[c], std::numeric_limits<float>::infinity());
-    exact = exact && lo[c] == v[c] && hi[c] == v[c];
-  }
-  std::memcpy(lob, lo, size_t(n) * 4);
-  std::memcpy(hib, hi, size_t(n) * 4);
-  if (u.ambiguous) classes |= cls;
-  if (!u.keepValue && !u.ambiguous) classes = cls;
-  cls = exact ? 0 : classes;
-}
-
-void updateUint(TextureData& tex, const TargetView& tv, uint32_t layer, int32_t x, int32_t y, const QuadOut (&o)[3],
-                int a, int p, const PixelUpdate& u) {
-  Provenance& pv = *tex.prov;
-  uint8_t* val = tex.texel(tv.level, layer, uint32_t(x), uint32_t(y));
-  uint8_t* lob = pv.lo->texel(tv.level, layer, uint32_t(x), uint32_t(y));
-  uint8_t* hib = pv.hi->texel(tv.level, layer, uint32_t(x), uint32_t(y));
-  uint16_t& cls = pv.cls(tex, tv.level, layer, uint32_t(x), uint32_t(y));
-  uint32_t lo, hi, v;
-  std::memcpy(&lo, lob, 4);
-  std::memcpy(&hi, hib, 4);
-  const FragInterval f = fragInterval(o, a, p, true);
-  uint32_t wlo = u.dontCare ? 0u : uint32_t(f.lo[0]), whi = u.dontCare ? 0xffffffffu : uint32_t(f.hi[0]);
-  if (u.keepValue) std::memcpy(val, o[2].color[a][p].u, 4);
-  std::memcpy(&v, val, 4);
-  uint16_t classes = u.classes;
-  if (u.ambiguous) wlo = std::min(wlo, lo), whi = std::max(whi, hi), classes |= cls;
-  else if (!u.keepValue) wlo = lo, whi = hi, classes = cls;
-  wlo = std::min(wlo, v), whi = std::max(whi, v);
-  std::memcpy(lob, &wlo, 4);
-  std::memcpy(hib, &whi, 4);
-  cls = (wlo == v && whi == v) ? 0 : classes;
 }
 
 }  // namespace
@@ -224,18 +393,45 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
   const int32_t y0 = std::max(t.minY, tile.y0), y1 = std::min(t.maxY, tile.y1);
   if (x0 > x1 || y0 > y1) return;
 
+  // Edge margins (docs/crosscheck.md, EDGE_TIE and CLIP_EDGE): GL's snapping of the implementation
+  // judged, plus, for an edge with an endpoint made by clipping, how far GL's float clipping may put
+  // that endpoint. A fan diagonal inside a clipped polygon is no boundary: whichever sub-triangle GL
+  // makes covers a centre near it exactly once, so it has no margin.
   double margin[3];
+  EdgeTag edgeTags[3];
   for (int i = 0; i < 3; ++i) {
     const double len = std::sqrt(double(t.a[i]) * double(t.a[i]) + double(t.b[i]) * double(t.b[i]));
-    margin[i] = (t.clipped ? tolerance::kClipMarginSub : tolerance::kEdgeMarginSub) * len;
+    margin[i] = t.edgeKind[i] == kEdgeInternal ? 0.0 : (scene.edgeMarginSub + t.clipMarginSub[i]) * len;
+    // The edge's key: its two snapped endpoints in a canonical order; side: whether this triangle
+    // runs it in that order (it lies to the left of its edges).
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    const bool forward = t.vx[j] < t.vx[k] || (t.vx[j] == t.vx[k] && t.vy[j] < t.vy[k]);
+    const int p0 = forward ? j : k, p1 = forward ? k : j;
+    // The draw is part of the key: GL guarantees identical snapped positions for identical inputs to
+    // one program (invariance, Appendix A), not across programs without `invariant gl_Position`.
+    uint64_t h = 0x9e3779b97f4a7c15ull;
+    for (int64_t v : {int64_t(ds.drawSerial), t.vx[p0], t.vy[p0], t.vx[p1], t.vy[p1]}) {
+      h ^= uint64_t(v) + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+      h *= 0xbf58476d1ce4e5b9ull;
+      h ^= h >> 31;
+    }
+    edgeTags[i].key = h;
+    edgeTags[i].side = forward ? 0 : 1;
+    edgeTags[i].covered = true;
   }
   // Depth gradient per pixel from the plane z = sum(E_i z_i) / 2A.
   const double area = double(t.area2);
   double dzdx = 0.0, dzdy = 0.0;
   for (int i = 0; i < 3; ++i) dzdx += double(t.a[i]) * t.z[i], dzdy += double(t.b[i]) * t.z[i];
   dzdx = dzdx / area * double(kSubpixelOne), dzdy = dzdy / area * double(kSubpixelOne);
-  const double tolZ = tolerance::kDepthAbs + (std::fabs(dzdx) + std::fabs(dzdy)) * tolerance::kSamplePosPx;
-  const uint16_t tieClass = t.clipped ? kClipEdge : kEdgeTie;
+  // A vertex made by clipping may sit elsewhere in GL (CLIP_EDGE), and with it the triangle's plane:
+  // values are compared over that distance too. Where GL may put it anywhere (a clipped primitive
+  // with vertices near FLT_MAX), GL's triangle is unrelated to the oracle's and every value is legal.
+  double clipPx = 0.0;
+  for (int i = 0; i < 3; ++i) clipPx = std::max(clipPx, t.clipMarginSub[i] / double(kSubpixelOne));
+  const bool unbounded = !(clipPx < 65536.0);
+  const double posTolPx = tolerance::kSamplePosPx + (unbounded ? 0.0 : clipPx);
+  const double tolZ = tolerance::kDepthAbs + (std::fabs(dzdx) + std::fabs(dzdy)) * posTolPx;
   const bool depthTest = ds.depth.test && tv.depth;
   const bool depthWrite = depthTest && ds.depth.write;
 
@@ -245,7 +441,7 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
   for (int32_t qy = y0 & ~1; qy <= y1; qy += 2) {
     for (int32_t qx = x0 & ~1; qx <= x1; qx += 2) {
       int64_t e[4][3];
-      uint8_t cov = 0, tie = 0;
+      uint8_t cov = 0, tie = 0, nearMask[4] = {};
       for (int p = 0; p < 4; ++p) {
         const int32_t px = qx + (p & 1), py = qy + (p >> 1);
         bool covered = true, nearEdge = false, nearMiss = true;
@@ -253,8 +449,10 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
           e[p][i] = t.a[i] * ((int64_t(px) << kSubpixelBits) + kSubpixelHalf) +
                     t.b[i] * ((int64_t(py) << kSubpixelBits) + kSubpixelHalf) + t.c[i];
           covered = covered && e[p][i] - t.bias[i] >= 0;
-          nearEdge = nearEdge || std::fabs(double(e[p][i])) <= margin[i];
-          nearMiss = nearMiss && double(e[p][i]) >= -margin[i];
+          const bool near = margin[i] > 0.0 && std::fabs(double(e[p][i])) <= margin[i];
+          nearEdge = nearEdge || near;
+          nearMask[p] |= uint8_t(near) << i;
+          nearMiss = nearMiss && (margin[i] > 0.0 ? double(e[p][i]) >= -margin[i] : e[p][i] - t.bias[i] >= 0);
         }
         if (px < x0 || px > x1 || py < y0 || py > y1) continue;
         cov |= uint8_t(covered) << p;
@@ -276,8 +474,8 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
           // equality under EQUAL / NOTEQUAL is not a near tie.
           const bool invariant = (ds.depth.func == CompareFunc::Equal || ds.depth.func == CompareFunc::NotEqual) &&
                                  z[p] == stored;
-          if (!invariant &&
-              std::fabs(double(z[p]) - stored) <= tolZ + std::fabs(double(stored)) * tolerance::kInterpRel)
+          if (unbounded || (!invariant && std::fabs(double(z[p]) - stored) <=
+                                              tolZ + std::fabs(double(stored)) * tolerance::kInterpRel))
             nearDepth |= uint8_t(1u << p);
         }
       }
@@ -310,20 +508,35 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
         const int32_t x = qx + (p & 1), y = qy + (p >> 1);
         if (keep && depthWrite) storeDepth(*tv.depth, tv.level, t.layer, x, y, z[p]);
         PixelUpdate u;
+        u.covered = cov >> p & 1;
+        u.coverTie = tie >> p & 1;
+        u.depthPass = pass >> p & 1;
+        u.depthTie = nearDepth >> p & 1;
+        u.discarded = outs[2].discard >> p & 1;
         u.keepValue = keep;
         u.ambiguous = amb;
-        u.dontCare = sp.dontCare[size_t(p)];
-        u.classes = uint16_t(sp.classes[size_t(p)] | (u.dontCare ? kOobFetch : 0) | ((tie >> p & 1) ? tieClass : 0) |
+        u.dontCare = sp.dontCare[size_t(p)] || unbounded;
+        u.posTolPx = posTolPx;
+        // A tie near exactly one edge that is no clipped edge is correlated with the triangle on the
+        // other side of that edge (EdgeTag).
+        const uint8_t nm = nearMask[p];
+        u.hasEdge = u.coverTie && std::popcount(uint32_t(nm)) == 1 && t.edgeKind[std::countr_zero(uint32_t(nm))] == kEdgeOriginal;
+        if (u.hasEdge) u.edge = edgeTags[std::countr_zero(uint32_t(nm))];
+        uint16_t tieClass = 0;
+        if (u.coverTie)
+          for (int i = 0; i < 3; ++i)
+            if (nm >> i & 1) tieClass |= t.edgeKind[i] == kEdgeClipped ? kClipEdge : kEdgeTie;
+        u.classes = uint16_t(sp.classes[size_t(p)] | (sp.dontCare[size_t(p)] ? kOobFetch : 0) | tieClass |
                              ((nearDepth >> p & 1) ? kDepthNearEqual : 0));
         for (int a = 0; a < ds.colorOutputs; ++a) {
           TextureData* c = tv.color[size_t(a)];
           if (!c || !c->prov) continue;
           switch (c->desc.format) {
             case Format::RGBA8:
-            case Format::R8: updateUnorm(*c, tv, t.layer, x, y, outs, a, p, ds.blend, u); break;
+            case Format::R8:
             case Format::RG32F:
-            case Format::RGBA32F: updateFloat(*c, tv, t.layer, x, y, outs, a, p, ds.blend, u); break;
-            case Format::R32UI: updateUint(*c, tv, t.layer, x, y, outs, a, p, u); break;
+            case Format::RGBA32F:
+            case Format::R32UI: updatePixel(*c, tv, t.layer, x, y, outs, a, p, ds.blend, u); break;
             default: break;
           }
         }

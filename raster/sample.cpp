@@ -89,7 +89,7 @@ LevelRef levelRef(const TextureData& tex, uint32_t level) {
 
 namespace sample_detail {
 
-Plan makePlan(const TexUnit& u, int32_t lambda8) {
+Plan makePlan(const TexUnit& u, int32_t lambda8, int32_t magSwitch8) {
   Plan p;
   const SamplerState& s = u.sampler.state;
   if (!isComplete(u.tex, s)) return p;
@@ -106,7 +106,7 @@ Plan makePlan(const TexUnit& u, int32_t lambda8) {
 
   int32_t d1 = 0, d2 = 0;
   uint32_t frac = 0;  // weight of d2, 0..255
-  if (lambda8 <= 0) {
+  if (lambda8 <= magSwitch8) {
     // GL 4.6 §8.15: magnification iff lambda <= c, with c = 0 (docs/spec-choices.md T4; llvmpipe's choice).
     // The base level with the mag filter.
     p.linear = s.magFilter == Filter::Linear;
@@ -525,13 +525,11 @@ void fetchBuffer(const TexUnit& u, int64_t index, float out[4]) {
   }
   uint64_t n = 0;
   const uint8_t* base = fetchBase(*u.tex, n);
-  // Out of range (undefined in GL without robustness): (0, 0, 0, 0), as llvmpipe and robust access.
+  // Out of range: (0, 0, 0, 0). texelFetch itself would be undefined in GL without robustness, but
+  // both GLSL twins that fetch (atlas_displace, texarray_batch) test the index against textureSize
+  // and return vec4(0) instead, so the value is defined and provenance treats it as exact.
   if (base == nullptr || index < 0 || uint64_t(index) >= n) {
     for (int c = 0; c < 4; ++c) out[c] = 0.0f;
-    // The value is undefined in GL: whatever the program makes of it is "don't care".
-    ShadeProvenance& pv = shadeProvenance();
-    if (pv.active)
-      for (auto& dc : pv.dontCare) dc = true;
     return;
   }
   const Format fmt = u.tex->desc.format;

@@ -64,7 +64,9 @@ struct Plan {
 // sample.cpp: the plan of a lookup at lambda (8.8): completeness, filter, levels and their weights,
 // border texel. In provenance mode the levels of a rendered texture are read through its lower or
 // upper interval image, as shadeProvenance().bound says.
-Plan makePlan(const TexUnit& u, int32_t lambda8);
+// magSwitch8: the mag/min switch point c in 8.8 (GL 4.6 §8.14: 0, or 1/2 = 128 for mag LINEAR with min
+// NEAREST_MIPMAP_*; the oracle uses 0, provenance also tries 128 where it is legal).
+Plan makePlan(const TexUnit& u, int32_t lambda8, int32_t magSwitch8 = 0);
 
 // sample.cpp: n lookups sharing one plan (out[i] = RGBA of lookup i); an incomplete plan gives
 // (0, 0, 0, 1).

@@ -4,7 +4,8 @@
 // The alternatives a GL implementation may take for one lookup (tolerances: raster/tolerances.h, each
 // derived in docs/crosscheck.md):
 // - lambda: exact rho vs the spec's bounds max(mu, mv) <= f <= mu + mv (GL 4.6 §8.14.1 eq. 8.7), coarse
-//   vs fine derivatives (GLSL §8.14.1), and log2 precision (tolerance::kLod8);
+//   vs fine derivatives (GLSL §8.14.1), and log2 precision (tolerance::kLod8); the mag/min switch point
+//   c = 1/2 where §8.14 allows it;
 // - texel coordinates: the sample-position shift times the coordinate derivatives, float interpolation
 //   error, and half an 8-bit weight step (tolerance::kSamplePosPx, kInterpRel, kWeightTexel);
 // - array layer: r + 1/2 near an integer (tolerance::kLayer);
@@ -114,9 +115,30 @@ void intervalPixel(const TexUnit& u, float s, float t, float r, bool array, cons
     sampleN(u, p, 1, &s, &t, &layerOracle, reinterpret_cast<float(*)[4]>(nominal));
     iv.init(nominal);
     if (isUnorm(d.format) && (p.linear || p.levelCount == 2)) classes |= kFilterPrecision;
+    // A texture rendered in provenance mode is read through its lower or upper interval image
+    // (sample.cpp); where that differs from its values, the texels' own freedoms reach this lookup.
+    ShadeProvenance& sp = shadeProvenance();
+    if (u.tex->prov && sp.bound != SampleBound::Value) {
+      const SampleBound b = sp.bound;
+      sp.bound = SampleBound::Value;  // makePlan picks the image the texels are read from
+      const Plan pv = makePlan(u, lamOracle);
+      float v[1][4];
+      sampleN(u, pv, 1, &s, &t, &layerOracle, v);
+      sp.bound = b;
+      if (!sameValue(v[0], nominal)) classes |= kInputInterval;
+    }
   }
-  for (int li = 0; li < nl; ++li) {
-    const Plan p = makePlan(u, lam[li]);
+  // GL 4.6 §8.14: with mag LINEAR and min NEAREST_MIPMAP_NEAREST or NEAREST_MIPMAP_LINEAR the switch
+  // point c may be 1/2 instead of the oracle's 0 (spec-choices T4): for lambda in (0, 1/2] the mag
+  // filter is then legal too.
+  const SamplerState& ss = u.sampler.state;
+  const bool halfSwitch = ss.magFilter == Filter::Linear &&
+                          (ss.minFilter == Filter::NearestMipmapNearest || ss.minFilter == Filter::NearestMipmapLinear);
+  for (int pi = 0; pi < 2 * nl; ++pi) {
+    const int li = pi >> 1;
+    const bool alt = pi & 1;
+    if (alt && !(halfSwitch && lam[li] > 0 && lam[li] <= 128)) continue;
+    const Plan p = makePlan(u, lam[li], alt ? 128 : 0);
     const LevelRef& coarse = p.lv[p.levelCount - 1];
     const double qS = tolerance::kWeightTexel / coarse.w, qT = tolerance::kWeightTexel / coarse.h;
     float sc[7], tc[7];
@@ -135,8 +157,8 @@ void intervalPixel(const TexUnit& u, float s, float t, float r, bool array, cons
           // coordinates and layer, or the coordinates with the oracle's LOD and layer. Combinations
           // only widen the interval.
           const bool nominalCoords = a == ns - 1 && b == nt - 1, nominalLayer = layer == layerOracle;
-          if (lam[li] != lamOracle && nominalCoords && nominalLayer) classes |= kLodNearSwitch;
-          if (lam[li] == lamOracle && !nominalCoords && nominalLayer) classes |= kSubtexelNearHalf;
+          if ((alt || lam[li] != lamOracle) && nominalCoords && nominalLayer) classes |= kLodNearSwitch;
+          if (!alt && lam[li] == lamOracle && !nominalCoords && nominalLayer) classes |= kSubtexelNearHalf;
         }
   }
   if (classes & kFilterPrecision) {

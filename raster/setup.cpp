@@ -1,7 +1,11 @@
 #include "raster/setup.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
+
+#include "raster/tolerances.h"
 
 namespace tessera::detail {
 
@@ -13,6 +17,8 @@ struct WindowVertex {
   float z;
   const double* var;     // clipped varyings (double) or nullptr
   const float* varF;     // unclipped varyings (float) or nullptr
+  bool original;         // a vertex of the primitive (false: made by clipping)
+  double errSub;         // how far GL may put it from here (sub-pixels; 0 for an original vertex)
 };
 
 inline int64_t floorDiv(int64_t a, int64_t b) {
@@ -22,8 +28,10 @@ inline int64_t floorDiv(int64_t a, int64_t b) {
 }
 
 // Bins a snapped triangle given window vertices in submission order.
+// `internal` flags the edges (w0 w1, w1 w2, w2 w0) that are fan diagonals of a clipped polygon.
 void binTriangle(WindowVertex w0, WindowVertex w1, WindowVertex w2, const VertexOut& provoking, uint32_t primitiveId,
-                 uint32_t layer, bool clipped, const SetupParams& params, SetupSink& sink, bool& binned) {
+                 uint32_t layer, bool clipped, const SetupParams& params, SetupSink& sink, bool& binned,
+                 std::array<bool, 3> internal = {false, false, false}) {
   PipelineStats& stats = sink.stats;
   // Doubled signed area from the snapped coordinates (GL 4.6 §14.6.1, eq. 14.8 in window space).
   const int64_t area2 = (w1.x - w0.x) * (w2.y - w0.y) - (w2.x - w0.x) * (w1.y - w0.y);
@@ -32,7 +40,9 @@ void binTriangle(WindowVertex w0, WindowVertex w1, WindowVertex w2, const Vertex
   const bool front = ccw == params.raster.frontCcw;
   if (params.raster.cull == CullMode::Back && !front) return;
   if (params.raster.cull == CullMode::Front && front) return;
-  if (!ccw) std::swap(w1, w2);  // edge functions below assume counter-clockwise order
+  // Edge opposite vertex i in submission order: 0 = w1 w2, 1 = w2 w0, 2 = w0 w1.
+  bool internalOpp[3] = {internal[1], internal[2], internal[0]};
+  if (!ccw) std::swap(w1, w2), std::swap(internalOpp[1], internalOpp[2]);  // edge functions below assume counter-clockwise order
 
   // Built in place at the end of the arena (a TriSetup is ~300 bytes); removed again if no tile takes it.
   TriSetup& t = sink.tris.emplace_back();
@@ -52,6 +62,10 @@ void binTriangle(WindowVertex w0, WindowVertex w1, WindowVertex w2, const Vertex
     t.bias[i] = inclusive ? 0 : 1;
     t.invW[i] = wv[i]->invW;
     t.z[i] = wv[i]->z;
+    t.vx[i] = wv[i]->x;
+    t.vy[i] = wv[i]->y;
+    t.edgeKind[i] = internalOpp[i] ? kEdgeInternal : (p.original && q.original) ? kEdgeOriginal : kEdgeClipped;
+    t.clipMarginSub[i] = t.edgeKind[i] == kEdgeClipped ? std::max(p.errSub, q.errSub) : 0.0;
     for (int k = 0; k < params.varyings; ++k)
       t.var[i][k] = wv[i]->var ? float(wv[i]->var[k]) : wv[i]->varF[k];
   }
@@ -61,8 +75,11 @@ void binTriangle(WindowVertex w0, WindowVertex w1, WindowVertex w2, const Vertex
   const int64_t miny = std::min({w0.y, w1.y, w2.y}), maxy = std::max({w0.y, w1.y, w2.y});
   const Rect& r = params.clampRect;
   // Provenance mode also visits pixels up to one pixel outside: they may be covered under another
-  // legal snapping (EDGE_TIE). Coverage itself stays exact; only the visited area grows.
-  const int64_t grow = params.provenance ? 1 : 0;
+  // legal snapping (EDGE_TIE), and further out as far as GL may put a vertex made by clipping
+  // (CLIP_EDGE). Coverage itself stays exact; only the visited area grows.
+  const double clipPx = std::max({w0.errSub, w1.errSub, w2.errSub}) / double(kSubpixelOne);
+  const int64_t clipGrow = clipPx < 65536.0 ? int64_t(std::ceil(clipPx)) : 65536;
+  const int64_t grow = params.provenance ? 1 + clipGrow : 0;
   const int64_t x0 = std::max<int64_t>(floorDiv(minx - kSubpixelHalf + kSubpixelOne - 1, kSubpixelOne) - grow, r.x);
   const int64_t x1 = std::min<int64_t>(floorDiv(maxx - kSubpixelHalf, kSubpixelOne) + grow, int64_t(r.x) + r.w - 1);
   const int64_t y0 = std::max<int64_t>(floorDiv(miny - kSubpixelHalf + kSubpixelOne - 1, kSubpixelOne) - grow, r.y);
@@ -94,7 +111,8 @@ void binTriangle(WindowVertex w0, WindowVertex w1, WindowVertex w2, const Vertex
         const int64_t sy = t.b[i] > 0 ? sy0 + span : sy0;
         // In provenance mode a near miss (within the tie margin, at most 2 px of edge function
         // here) must still reach the tile.
-        const int64_t slack = params.provenance ? 2 * kSubpixelOne * (std::abs(t.a[i]) + std::abs(t.b[i])) : 0;
+        const int64_t slack =
+            params.provenance ? (2 + clipGrow) * kSubpixelOne * (std::abs(t.a[i]) + std::abs(t.b[i])) : 0;
         reject = t.a[i] * sx + t.b[i] * sy + t.c[i] - t.bias[i] + slack < 0;
       }
       if (reject) continue;
@@ -131,7 +149,42 @@ inline WindowVertex toWindow(const double pos[4], const Rect& vp) {
   w.z = float(zw);
   w.var = nullptr;
   w.varF = nullptr;
+  w.original = true;
+  w.errSub = 0.0;
   return w;
+}
+
+// Provenance: whether a vertex of the clipped polygon is one of the primitive's own (clipping copies
+// those unchanged).
+inline bool isOriginal(const ClipVertex& c, const VertexOut (&v)[3]) {
+  for (const VertexOut& o : v)
+    if (c.pos[0] == double(o.pos[0]) && c.pos[1] == double(o.pos[1]) && c.pos[2] == double(o.pos[2]) &&
+        c.pos[3] == double(o.pos[3]))
+      return true;
+  return false;
+}
+
+// Provenance: the largest clip-space magnitude among the primitive's vertices, the scale of GL's
+// float error in a vertex that clipping computes from them.
+inline double clipMagnitude(const VertexOut (&v)[3]) {
+  double m = 0.0;
+  for (const VertexOut& o : v)
+    for (int k = 0; k < 4; ++k) m = std::max(m, std::fabs(double(o.pos[k])));
+  return m;
+}
+
+// Provenance: how far (sub-pixels, x plus y) GL may put a vertex that clipping made, when it clips
+// in float (docs/crosscheck.md, CLIP_EDGE): each clip-space component within
+// tolerance::kClipVertexRel * mag, then divided by w and scaled by the viewport, plus GL's own
+// snapping of it (counted by the edge margin). Unbounded (infinity) when w may reach 0.
+inline double clipVertexErrorSub(const double pos[4], double mag, const Rect& vp) {
+  const double e = tolerance::kClipVertexRel * mag;
+  const double w = pos[3];
+  if (!(w - e > 0.0)) return std::numeric_limits<double>::infinity();
+  const double wl = w - e;
+  const double dx = (e + std::fabs(pos[0] / w) * e) / wl, dy = (e + std::fabs(pos[1] / w) * e) / wl;
+  const double sub = (dx * 0.5 * vp.w + dy * 0.5 * vp.h) * double(kSubpixelOne);
+  return std::isfinite(sub) ? sub : std::numeric_limits<double>::infinity();
 }
 
 }  // namespace
@@ -182,13 +235,19 @@ void setupTriangle(const VertexOut (&v)[3], uint32_t primitiveId, uint32_t layer
         ++stats.primitives_culled;
         return;
       }
+    const double mag = params.provenance ? clipMagnitude(v) : 0.0;
     for (int i = 0; i < n; ++i) {
       w[i] = toWindow(poly[i].pos, params.viewport);
       w[i].var = poly[i].var;
+      if (params.provenance) {
+        w[i].original = isOriginal(poly[i], v);
+        w[i].errSub = w[i].original ? 0.0 : clipVertexErrorSub(poly[i].pos, mag, params.viewport);
+      }
     }
     // Fan from the first vertex; every sub-triangle keeps the primitive's provoking vertex and id.
     for (int i = 1; i + 1 < n; ++i)
-      binTriangle(w[0], w[i], w[i + 1], v[2], primitiveId, layer, true, params, sink, binned);
+      binTriangle(w[0], w[i], w[i + 1], v[2], primitiveId, layer, true, params, sink, binned,
+                  {i > 1, false, i + 2 < n});
   }
   if (!binned) ++stats.primitives_culled;
 }

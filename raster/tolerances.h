@@ -16,18 +16,28 @@ namespace tessera::tolerance {
 
 // ---- coverage and interpolation (rast_provenance.cpp) -------------------------------------------
 
-// Edge margin, in sub-pixels (1/256 px) of distance between a pixel centre and an edge line.
-// GL 4.6 §14.5 leaves sub-pixel snapping free (spec-choices R1) and §14.6.1 only asks shared edges to
-// have no gaps and no double hits (R3). Another implementation with 8 sub-pixel bits may round each
-// vertex to any of its 4 neighbouring grid points, so an edge moves by up to sqrt(2) sub-pixels.
-// docs/crosscheck.md, row EDGE_TIE.
-constexpr double kEdgeMarginSub = 1.4142135623730951;  // sqrt(2)
+// Edge margin, in sub-pixels (1/256 px) of distance between a pixel centre and an edge line, for an
+// implementation with `bits` sub-pixel bits (GL_SUBPIXEL_BITS; GL 4.6 §14.5 requires at least 4).
+// §14.5 leaves the snapping rule free (spec-choices R1): GL's snapped vertex is one of the grid points
+// around the exact position (round or truncate, per axis), the oracle's the nearest 1/256 point. With
+// the same grid (8 bits) the two are at most one grid step apart per axis; with another grid at most
+// half the oracle's step plus one of GL's. A segment whose endpoints move by at most d moves by at most
+// d everywhere, and d = sqrt(2) * (per-axis bound). docs/crosscheck.md, row EDGE_TIE.
+inline double edgeMarginSub(int bits) {
+  constexpr double kSqrt2 = 1.4142135623730951;
+  if (bits == 8) return kSqrt2;
+  const int b = bits < 4 ? 4 : (bits > 24 ? 24 : bits);
+  return kSqrt2 * (0.5 + 256.0 / double(1 << b));
+}
 
-// Edge margin of a triangle made by clipping, in sub-pixels: 1 px. GL 4.6 §13.7 (Primitive Clipping)
-// fixes the clip volume but not the precision of the new vertices: GL may clip in float and snap them,
-// and because of the oracle's guard band (spec-choices V2) GL may clip where the oracle does not.
-// docs/crosscheck.md, row CLIP_EDGE.
-constexpr double kClipMarginSub = 256.0;
+// Relative error of a clip-space component of a vertex that clipping made, in units of the largest
+// clip-space magnitude among the primitive's vertices: 2^-18. GL 4.6 §13.7 gives the new vertex
+// exactly (P = t P1 + (1 - t) P2 with t from the clip distances), §2.3.4.1 leaves the precision to the
+// implementation. Assumption: IEEE float32 (unit roundoff 2^-24) and at most 64 roundings of
+// quantities bounded by that magnitude along the vertex's chain (per clip plane: the two distances,
+// their difference, the quotient t, and per component a difference, a product and a sum, about ten
+// roundings; six planes in sequence). docs/crosscheck.md, row CLIP_EDGE.
+constexpr double kClipVertexRel = 1.0 / 262144.0;  // 2^-18
 
 // Sample-position shift, in pixels: two implementations each half a snapping step (1/256 px, GL 4.6
 // §14.5, R1) off see the same pixel centre up to 1/128 px apart. Multiplied by the per-pixel gradient
@@ -47,16 +57,20 @@ constexpr double kDepthAbs = 1.0 / 2097152.0;  // 2^-21
 // ---- per-fragment operations (rast_provenance.cpp, rast.cpp) ------------------------------------
 
 // Blend arithmetic error, in [0, 1] units: 2.5 LSB of unorm8 before the final rounding of each blended
-// write. GL 4.6 §17.3.6.1 leaves the precision of blending free (spec-choices F2); an 8-bit blender
-// quantizes the source and both factors and rounds both products, five errors of at most 1/2 LSB.
+// write. GL 4.6 §17.3.6.1: blending is carried out "with a precision and dynamic range no lower than
+// that used to represent destination components" (8 bits here). Assumption: every intermediate is
+// rounded to that precision at most once: the source, the source factor and the destination factor
+// (the destination is already 8-bit), and the two products. Each rounding errs by at most 1/2 LSB and
+// carries into the result with a weight of at most 1 (the other operand is in [0, 1]): 5 * 1/2 LSB.
 // docs/crosscheck.md, row BLEND_PRECISION.
 constexpr double kBlendUnorm = 2.5 / 255.0;
 
-// Relative error of a unorm clear colour converted in float32: 2^-22 of c * 255, a float32 product's
-// rounding with margin. GL 4.6 §2.3.5.2 (float to unorm conversion, spec-choices F3) allows either
-// neighbour at a tie, and c * 255 rounded to float32 can land on one. docs/crosscheck.md, row
-// OUTPUT_ROUNDING ("clear colours").
-constexpr double kClearRel = 1.0 / 4194304.0;  // 2^-22
+// Relative error of a unorm clear colour converted in float32: 2^-24 of c * 255. GL 4.6 §17.4.3.1
+// converts the clear colour as §2.3.5.2 says (float to unorm, spec-choices F3: round to nearest, a tie
+// either way). Assumption: the implementation forms c * (2^8 - 1) as one float32 product (or more
+// precisely), whose rounding error is at most the unit roundoff 2^-24 relative; the product may then
+// land on a tie. docs/crosscheck.md, row OUTPUT_ROUNDING ("clear colours").
+constexpr double kClearRel = 1.0 / 16777216.0;  // 2^-24
 
 // ---- texture lookups (sample_interval.cpp) ------------------------------------------------------
 
@@ -76,10 +90,13 @@ constexpr double kWeightTexel = 1.0 / 512.0;
 // float error. docs/crosscheck.md, row LAYER_TIE.
 constexpr float kLayer = 1.0f / 65536.0f;  // 2^-16
 
-// Filter arithmetic error of a unorm lookup that blends texels, in [0, 1] units: 1 LSB. GL 4.6
-// §8.14.2 leaves the precision of filtering free (spec-choices T8 is the oracle's exact choice);
-// llvmpipe's AoS path lerps in 8-bit fixed point with its own rounding. docs/crosscheck.md, row
-// FILTER_PRECISION.
+// Filter arithmetic error of a unorm lookup that blends texels with a fractional weight, in [0, 1]
+// units: 1 LSB. GL 4.6 §8.14.2 gives the filter exactly and leaves its precision free (spec-choices
+// T8 is the oracle's exact choice); the weights' own precision is kWeightTexel. Assumption: the
+// weighted texels are accumulated without intermediate quantization (as a fixed-point sum with 8-bit
+// or finer weights) and the sum is rounded or truncated once to the texel precision: an error below
+// 1 LSB. (Applied to every lookup that LINEAR or a level pair blends, also where the weights happen
+// to be 0 and 1; narrowing that is left open.) docs/crosscheck.md, row FILTER_PRECISION.
 constexpr double kFilterUnorm = 1.0 / 255.0;
 
 }  // namespace tessera::tolerance

@@ -34,7 +34,8 @@ struct Side {
 
 Side runBoth(const CommandList& list, std::string_view name, const CrosscheckOptions& o, const OtherBackend& other) {
   Side s;
-  s.oracle = std::make_unique<CpuBackend>(RenderOptions{o.threads, true, o.limits});
+  s.oracle = std::make_unique<CpuBackend>(
+      RenderOptions{o.threads, true, o.limits, o.otherSubpixelBits > 0 ? o.otherSubpixelBits : 4});
   const auto t0 = Clock::now();
   s.oracle->execute(list, name);
   s.oracleMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -157,10 +158,11 @@ CrosscheckResult crosscheck(const CommandList& list, std::string_view frameName,
                             gl::GlBackend* gl) {
   if (!gl && !o.selfCheck) throw Error("crosscheck: no GL backend");
   auto firstCalls = std::make_shared<std::optional<gl::GlCallCounts>>();
-  CrosscheckOptions withCondition = o;
-  if (gl && o.expectations && !o.condition) withCondition.condition = runConditionOf(*gl);
-  CrosscheckResult r = crosscheck(list, frameName, withCondition,
-                                  gl ? glOther(*gl, firstCalls) : fastPathOther(o.threads, o.limits));
+  CrosscheckOptions opt = o;
+  if (gl && o.expectations && !o.condition) opt.condition = runConditionOf(*gl);
+  if (opt.otherSubpixelBits <= 0) opt.otherSubpixelBits = gl ? gl->info().limits.subpixelBits : kSubpixelBits;
+  CrosscheckResult r = crosscheck(list, frameName, opt, gl ? glOther(*gl, firstCalls) : fastPathOther(o.threads, o.limits));
+  r.json["other_subpixel_bits"] = opt.otherSubpixelBits > 0 ? opt.otherSubpixelBits : 4;
   if (gl && *firstCalls) {
     r.json["counters"] = counterEquality(list, **firstCalls);
     r.json["gl_calls"] = (*firstCalls)->toJson();

@@ -32,6 +32,9 @@ struct CrosscheckOptions {
   // condition is the backend's (runConditionOf).
   const ExpectationSet* expectations = nullptr;
   std::optional<RunCondition> condition;
+  // GL_SUBPIXEL_BITS of the other side, for the edge margin (tolerance::edgeMarginSub). 0: taken from
+  // the GL context (crosscheck with a GlBackend), the oracle's 8 for the self-check, else GL's minimum 4.
+  int otherSubpixelBits = 0;
 };
 
 struct ImageVerdict {

@@ -68,7 +68,7 @@ int bin(double d) {
 constexpr Rgba kClassColors[kClassCount] = {
     {255, 200, 0, 255},  {255, 120, 0, 255}, {0, 160, 255, 255},  {0, 220, 160, 255}, {160, 0, 255, 255},
     {255, 0, 200, 255},  {120, 120, 0, 255}, {80, 200, 255, 255}, {0, 120, 80, 255},  {200, 160, 255, 255},
-    {140, 255, 140, 255}};
+    {140, 255, 140, 255}, {255, 140, 140, 255}};
 
 
 std::string jsonArray(Format f, const std::vector<uint8_t>& px, size_t n) {
@@ -126,10 +126,15 @@ void writeCrosscheckReport(const CrosscheckResult& result, const std::string& di
 
     const nlohmann::json jj = toJson(j);
     std::string rows;
-    for (int b = 0; b < kClassCount; ++b)
-      rows += fmt::format("<tr><td><span class=sw style='background:rgb({},{},{})'></span>{}</td><td>{}</td><td>{}</td></tr>",
-                          kClassColors[b][0], kClassColors[b][1], kClassColors[b][2], ambiguityClassName(b),
-                          j.classPixels[size_t(b)], j.classExplained[size_t(b)]);
+    for (int b = 0; b < kClassCount; ++b) {
+      const nlohmann::json& pc = jj["per_class"][std::string(ambiguityClassName(b))];
+      rows += fmt::format(
+          "<tr><td><span class=sw style='background:rgb({},{},{})'></span>{}</td><td>{}</td><td>{}</td>"
+          "<td>{:.4f}</td><td>{}</td><td>{}</td><td>{:.3f}</td><td>{}</td><td>{}</td></tr>",
+          kClassColors[b][0], kClassColors[b][1], kClassColors[b][2], ambiguityClassName(b), j.classPixels[size_t(b)],
+          j.classExplained[size_t(b)], pc["fraction"].get<double>(), pc["mean_width"].dump(), pc["max_width"].dump(),
+          pc["mean_candidates"].get<double>(), pc["max_candidates"].dump(), pc["fallbacks"].dump());
+    }
     sections += fmt::format(
         "<h2>{name} — {fmt} {w}x{h}: {verdict}</h2>"
         "<p>exact {exact:.3f}% · classed {classed} · explained {expl} · <b>unexplained {unexpl}</b> · max |Δ| {maxd} · "
@@ -142,12 +147,14 @@ void writeCrosscheckReport(const CrosscheckResult& result, const std::string& di
         "<span id=altl{k}>oracle</span></figcaption></figure></div>"
         "<p class=insp id=insp{k}>click or hover a pixel to inspect it</p>"
         "<p><img src='{p}histogram.png' style='width:auto'><br>error histogram (|Δ| per pixel, largest channel, log scale)</p>"
-        "<table><tr><th>class</th><th>pixels</th><th>explained differences</th></tr>{rows}</table>",
+        "<table><tr><th>class</th><th>pixels</th><th>explained differences</th><th>fraction</th>"
+        "<th>mean width</th><th>max width</th><th>mean candidates</th><th>max candidates</th><th>fallbacks</th></tr>"
+        "{rows}</table><p>candidate sets that fell back to their hull: {fallbacks}</p>",
         fmt::arg("name", v.name), fmt::arg("fmt", formatName(j.format)), fmt::arg("w", j.width), fmt::arg("h", j.height),
         fmt::arg("verdict", j.passed() ? "PASS" : "FAIL"), fmt::arg("exact", j.exactPercent()),
         fmt::arg("classed", j.classed), fmt::arg("expl", j.explained), fmt::arg("unexpl", j.unexplained),
         fmt::arg("maxd", jj["max_abs_diff"].dump()), fmt::arg("psnr", jj["psnr_db"].dump()), fmt::arg("k", k),
-        fmt::arg("p", p), fmt::arg("rows", rows));
+        fmt::arg("p", p), fmt::arg("rows", rows), fmt::arg("fallbacks", j.fallbacks));
     if (n <= (1u << 20)) {
       std::string classes = "[";
       for (size_t i = 0; i < n; ++i) classes += (i ? "," : "") + std::to_string(j.classMap[i]);

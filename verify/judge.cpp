@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 
 #include "base/image_diff.h"
@@ -58,6 +59,8 @@ Judgement judge(const TextureData& tex, uint32_t level, uint32_t layer, const st
   j.classMap.resize(j.pixels);
   j.failMap.resize(j.pixels);
   const auto& cls = tex.prov->classes[level];
+  const auto& flags = tex.prov->flags[level];
+  const auto& cands = tex.prov->candidates[level];
   // The size of the differences (max |Δ| per channel, MSE) in channel units, in pixel order
   // (base/image_diff.h). Non-finite differences are left out: their pixels are judged by interval.
   ImageDiffRules rules;
@@ -68,11 +71,30 @@ Judgement judge(const TextureData& tex, uint32_t level, uint32_t layer, const st
     for (int x = 0; x < j.width; ++x) {
       const size_t i = size_t(y) * size_t(j.width) + size_t(x);
       // Provenance classes are stored bottom row first (GL order); images are top row first.
-      const uint16_t classes = cls[(size_t(layer) * size_t(j.height) + size_t(j.height - 1 - y)) * size_t(j.width) + x];
+      const size_t si = (size_t(layer) * size_t(j.height) + size_t(j.height - 1 - y)) * size_t(j.width) + x;
+      const uint16_t classes = cls[si];
+      const std::vector<Candidate>& set = cands[si];
+      const bool fallback = flags[si] & kFallback;
       j.classMap[i] = classes;
       if (classes) ++j.classed;
+      if (fallback) ++j.fallbacks;
+      if (set.size() > 1) ++j.multiCandidate;
       for (int b = 0; b < kClassCount; ++b)
-        if (classes >> b & 1) ++j.classPixels[size_t(b)];
+        if (classes >> b & 1) {
+          ++j.classPixels[size_t(b)];
+          ClassStats& st = j.classStats[size_t(b)];
+          ++st.pixels;
+          for (int c = 0; c < j.channels; ++c) {
+            const double w = channelValue(j.format, &hi[i * bpt], c) - channelValue(j.format, &lo[i * bpt], c);
+            const double width = std::isnan(w) ? std::numeric_limits<double>::infinity() : w;
+            st.widthSum[size_t(c)] += width;
+            st.widthMax[size_t(c)] = std::max(st.widthMax[size_t(c)], width);
+          }
+          const uint64_t n = set.empty() ? 1u : set.size();
+          st.candidateSum += n;
+          st.candidateMax = std::max(st.candidateMax, n);
+          if (fallback) ++st.fallbacks;
+        }
       const uint8_t* pv = &val[i * bpt];
       const uint8_t* po = &other[i * bpt];
       if (std::memcmp(pv, po, bpt) == 0) {
@@ -81,16 +103,31 @@ Judgement judge(const TextureData& tex, uint32_t level, uint32_t layer, const st
         diff.endPixel(false);
         continue;
       }
-      bool within = true;
+      // A differing pixel is explained only by a class, and only inside one candidate's box (the
+      // hull's box when the pixel keeps no set).
+      bool withinHull = true;
       double worst = 0.0;
       PixelRecord rec{x, y, {}, {}, {}, {}, classes};
       for (int c = 0; c < j.channels; ++c) {
         const double v = channelValue(j.format, pv, c), o = channelValue(j.format, po, c);
         const double l = channelValue(j.format, &lo[i * bpt], c), h = channelValue(j.format, &hi[i * bpt], c);
         rec.oracle[size_t(c)] = v, rec.other[size_t(c)] = o, rec.lo[size_t(c)] = l, rec.hi[size_t(c)] = h;
-        if (!sameValue(v, o) && !inside(o, l, h)) within = false;
+        if (!sameValue(v, o) && !inside(o, l, h)) withinHull = false;
         const double d = diff.add(c, v, o);
         if (std::isfinite(d)) worst = std::max(worst, d);
+      }
+      bool within = classes != 0 && withinHull;
+      if (within && !set.empty()) {
+        within = false;
+        for (const Candidate& cand : set) {
+          bool in = true;
+          for (int c = 0; c < j.channels && in; ++c)
+            in = inside(channelValue(j.format, po, c), cand.lo[size_t(c)], cand.hi[size_t(c)]);
+          if (in) {
+            within = true;
+            break;
+          }
+        }
       }
       diff.endPixel(true);
       ++j.histogram[size_t(histogramBin(worst))];
@@ -114,9 +151,25 @@ Judgement judge(const TextureData& tex, uint32_t level, uint32_t layer, const st
 
 nlohmann::json toJson(const Judgement& j) {
   nlohmann::json perClass = nlohmann::json::object();
-  for (int b = 0; b < kClassCount; ++b)
-    perClass[std::string(ambiguityClassName(b))] = {{"pixels", j.classPixels[size_t(b)]},
-                                                   {"explained_differences", j.classExplained[size_t(b)]}};
+  // Widths may be infinite (a blended float target): JSON has no infinity, so it is written "inf".
+  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json("inf"); };
+  for (int b = 0; b < kClassCount; ++b) {
+    const ClassStats& st = j.classStats[size_t(b)];
+    nlohmann::json meanW = nlohmann::json::array(), maxW = nlohmann::json::array();
+    for (int c = 0; c < j.channels; ++c) {
+      meanW.push_back(number(st.pixels ? st.widthSum[size_t(c)] / double(st.pixels) : 0.0));
+      maxW.push_back(number(st.widthMax[size_t(c)]));
+    }
+    perClass[std::string(ambiguityClassName(b))] = {
+        {"pixels", j.classPixels[size_t(b)]},
+        {"explained_differences", j.classExplained[size_t(b)]},
+        {"fraction", j.pixels ? double(st.pixels) / double(j.pixels) : 0.0},
+        {"mean_width", meanW},
+        {"max_width", maxW},
+        {"mean_candidates", st.pixels ? double(st.candidateSum) / double(st.pixels) : 0.0},
+        {"max_candidates", st.candidateMax},
+        {"fallbacks", st.fallbacks}};
+  }
   nlohmann::json first = nlohmann::json::array();
   for (const PixelRecord& r : j.firstUnexplained) {
     nlohmann::json classes = nlohmann::json::array();
@@ -140,6 +193,9 @@ nlohmann::json toJson(const Judgement& j) {
           {"unexplained", j.unexplained},
           {"passed", j.passed()},
           {"per_class", perClass},
+          {"candidate_fallbacks", j.fallbacks},
+          {"multi_candidate_pixels", j.multiCandidate},
+          {"max_candidates", kMaxCandidates},
           {"max_abs_diff", std::vector<double>(j.maxAbsDiff.begin(), j.maxAbsDiff.begin() + j.channels)},
           {"histogram_bins", {"0", "1", "2", "3-4", "5-8", "9-16", "17-32", "33-64", "65-128", "129+"}},
           {"histogram", j.histogram},

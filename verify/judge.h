@@ -1,8 +1,8 @@
 // Judging another implementation's image against the oracle's provenance, pixel by pixel.
 //
-// Implements the cross-check rule of docs/crosscheck.md: a pixel whose oracle interval is a single
-// value (no ambiguity class) must match bit for bit; a classed pixel must lie inside its interval in
-// every channel; anything else is unexplained. Also gathers what a reader needs to see why: counts
+// Implements the cross-check rule of docs/crosscheck.md: a pixel with no ambiguity class must match
+// bit for bit (whatever its interval); a classed pixel must lie inside one of its candidates' boxes in
+// every channel (provenance.h); anything else is unexplained. Also gathers what a reader needs to see why: counts
 // per class, exact-match %, max |delta| per channel in LSBs, an error histogram, PSNR and the first
 // unexplained pixels with both values and their provenance. The max |delta| and the MSE / PSNR are
 // base/image_diff.h's (NonFiniteRule::Skip, peak 255 for unorm formats, 1 otherwise).
@@ -26,6 +26,16 @@ struct PixelRecord {
   uint16_t classes;
 };
 
+// How permissive the verdict was for the pixels of one class: the width of their hull per channel
+// and the size of their candidate sets.
+struct ClassStats {
+  uint64_t pixels = 0;
+  std::array<double, 4> widthSum{}, widthMax{};  // hi - lo of the hull (LSBs for unorm), per channel
+  uint64_t candidateSum = 0;                     // candidates per pixel (1 = the hull alone)
+  uint64_t candidateMax = 0;
+  uint64_t fallbacks = 0;  // pixels whose set outgrew kMaxCandidates and fell back to the hull
+};
+
 struct Judgement {
   Format format = Format::RGBA8;
   int width = 0, height = 0, channels = 0;
@@ -36,6 +46,9 @@ struct Judgement {
   uint64_t unexplained = 0;    // differing, outside their interval (failures)
   std::array<uint64_t, kClassCount> classPixels{};     // pixels carrying each class
   std::array<uint64_t, kClassCount> classExplained{};  // explained pixels carrying each class
+  std::array<ClassStats, kClassCount> classStats{};
+  uint64_t fallbacks = 0;       // pixels whose candidate set fell back to its hull (kFallback)
+  uint64_t multiCandidate = 0;  // pixels with two or more candidates
   std::array<double, 4> maxAbsDiff{};                  // LSBs for unorm, value units otherwise
   std::array<uint64_t, 10> histogram{};  // same bins as image_compare.h kHistogramBins  // |delta| in LSB: 0, 1, 2, 3-4, 5-8, 9-16, 17-32, 33-64, 65-128, 129+
   double mse = 0.0;                      // mean squared error over channels, in LSB^2 for unorm

@@ -27,5 +27,6 @@ void buildArrayLayers(CommandList& cl, int w, int h);
 void buildAtlasClip(CommandList& cl, int w, int h);
 void buildLodLevels(CommandList& cl, int w, int h);
 void buildDepthTies(CommandList& cl, int w, int h);
+void buildFarVertices(CommandList& cl, int w, int h);
 
 }  // namespace tessera::scenes
