@@ -19,6 +19,15 @@ softpipe_or_skip() {
 }
 
 case "$case_name" in
+  every_scene_passes_on_softpipe_with_only_its_pinned_deviations)
+    # The second GL implementation: every built-in scene, judged with the tolerances derived for the
+    # GL_SUBPIXEL_BITS softpipe reports; what remains is pinned in tests/expectations/gl-deviations.json.
+    for scene in $("$tessera" scenes | awk '{print $1}'); do
+      softpipe_or_skip "$tessera" crosscheck "$scene" --gl-driver softpipe --no-bisect
+      [ "$(json_field out.json "['unexplained']")" = "0" ] || fail "$scene: unexplained pixels on softpipe"
+      [ "$(json_field out.json "['other_subpixel_bits']")" = "4" ] || fail "$scene: softpipe's subpixel bits not used"
+    done
+    ;;
   crosscheck_on_softpipe_records_the_driver_and_the_gl_path)
     softpipe_or_skip "$tessera" crosscheck fill_fan --gl-driver softpipe --report r
     [ "$(json_field out.json "['gl_info']['driver']")" = "softpipe" ] || fail "driver not recorded"
