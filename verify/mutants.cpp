@@ -9,6 +9,7 @@
 #include "base/atomic_file.h"
 #include "base/error.h"
 #include "raster/cpu_backend.h"
+#include "verify/html_escape.h"
 #include "verify/judge.h"
 
 namespace tessera::verify {
@@ -92,29 +93,6 @@ nlohmann::json toJson(const MutantsResult& r) {
           {"runtime_seconds", r.runtimeSeconds}};
 }
 
-std::string escape(std::string_view s) {
-  std::string o;
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        o += "&amp;";
-        break;
-      case '<':
-        o += "&lt;";
-        break;
-      case '>':
-        o += "&gt;";
-        break;
-      case '"':
-        o += "&quot;";
-        break;
-      default:
-        o += c;
-    }
-  }
-  return o;
-}
-
 }  // namespace
 
 bool MutantsResult::passed() const {
@@ -192,15 +170,15 @@ void writeMutantsReport(const MutantsResult& r, const std::string& dir) {
   writeFileAtomically(dir + "/report.json", r.json.dump(2) + "\n");
 
   std::string head = "<tr><th>mutant</th><th>imitates</th><th>kind</th><th>status</th>";
-  for (const std::string& f : r.frames) head += "<th>" + escape(f) + "</th>";
+  for (const std::string& f : r.frames) head += "<th>" + escapeHtml(f) + "</th>";
   head += "<th>change / equivalence argument</th></tr>";
   std::string rows = "<tr class=base><td>unmodified backend</td><td>(false alarms)</td><td></td><td></td>";
   for (uint64_t a : r.falseAlarms) rows += fmt::format("<td class={}>{}</td>", a ? "alarm" : "clean", a);
   rows += "<td>unexplained pixels of GL without a mutation: must be 0</td></tr>\n";
   for (const MutantRow& row : r.rows) {
     const gl::Mutation& m = *row.mutation;
-    rows += fmt::format("<tr><td><b>{}</b></td><td>{}</td><td>{}</td><td class={}>{}{}</td>", escape(m.name),
-                        escape(m.imitates), escape(m.kind), row.verdictTooStrict ? "alarm" : row.status, row.status,
+    rows += fmt::format("<tr><td><b>{}</b></td><td>{}</td><td>{}</td><td class={}>{}{}</td>", escapeHtml(m.name),
+                        escapeHtml(m.imitates), escapeHtml(m.kind), row.verdictTooStrict ? "alarm" : row.status, row.status,
                         row.verdictTooStrict ? " — but killed: the verdict is stricter than GL here" : "");
     for (size_t f = 0; f < r.frames.size(); ++f) {
       const bool kill = row.newUnexplained[f] > 0;
@@ -208,8 +186,8 @@ void writeMutantsReport(const MutantsResult& r, const std::string& dir) {
           "<td class={} title='{} unexplained, {} of them new (not unexplained without the mutant)'>{}</td>",
           kill ? "kill" : "live", row.unexplained[f], row.newUnexplained[f], row.unexplained[f]);
     }
-    rows += "<td>" + escape(m.change);
-    if (!m.equivalent.empty()) rows += "<br><i>equivalent: " + escape(m.equivalent) + "</i>";
+    rows += "<td>" + escapeHtml(m.change);
+    if (!m.equivalent.empty()) rows += "<br><i>equivalent: " + escapeHtml(m.equivalent) + "</i>";
     rows += "</td></tr>\n";
   }
   const std::string html = fmt::format(
@@ -231,9 +209,9 @@ kills is marked red: there the verdict would reject a conforming GL. See docs/mu
       fmt::arg("verdict", r.passed() ? "PASS" : "FAIL"), fmt::arg("killed_percent", r.killedPercent),
       fmt::arg("killed", r.json.value("killed", 0)), fmt::arg("survived", r.json.value("survived", 0)),
       fmt::arg("equivalent", r.json.value("equivalent", 0)), fmt::arg("runtime", r.runtimeSeconds),
-      fmt::arg("renderer", escape(r.json.contains("gl_info") ? r.json["gl_info"].value("gl_renderer", "?") : "?")),
+      fmt::arg("renderer", escapeHtml(r.json.contains("gl_info") ? r.json["gl_info"].value("gl_renderer", "?") : "?")),
       fmt::arg("strict", r.json.value("strict", false) ? " (--strict)" : ""), fmt::arg("head", head),
-      fmt::arg("rows", rows), fmt::arg("json", escape(r.json.dump(1))));
+      fmt::arg("rows", rows), fmt::arg("json", escapeHtml(r.json.dump(1))));
   writeFileAtomically(dir + "/index.html", html);
 }
 

@@ -3,34 +3,12 @@
 #include <cstring>
 #include <sstream>
 
+#include "verify/html_escape.h"
 #include "verify/image_read.h"
 
 namespace tessera::verify {
 
 namespace {
-
-std::string escapeHtml(std::string_view s) {
-  std::string o;
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        o += "&amp;";
-        break;
-      case '<':
-        o += "&lt;";
-        break;
-      case '>':
-        o += "&gt;";
-        break;
-      case '"':
-        o += "&quot;";
-        break;
-      default:
-        o += c;
-    }
-  }
-  return o;
-}
 
 // JSON inside <script>: "</" would end the script element early.
 std::string scriptSafe(const std::string& json) {

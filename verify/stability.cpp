@@ -4,21 +4,11 @@
 
 #include "base/error.h"
 #include "verify/crosscheck.h"
+#include "verify/html_escape.h"
 
 namespace tessera::verify {
 
 namespace {
-
-std::string escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else out += c;
-  }
-  return out;
-}
 
 // Per image: differing pixels (a pixel = bytes / pixelsPerImage[i] bytes) and differing bytes.
 struct Difference {
@@ -136,10 +126,10 @@ nlohmann::json checkStability(const CommandList& list, const std::vector<Stabili
 }
 
 std::string stabilityHtml(const nlohmann::json& s, const std::string& frame) {
-  std::string h = "<!doctype html><meta charset=utf-8><title>GL stability: " + escape(frame) +
+  std::string h = "<!doctype html><meta charset=utf-8><title>GL stability: " + escapeHtml(frame) +
                   "</title><style>body{font-family:sans-serif}td,th{border:1px solid #999;padding:2px 6px}"
                   "table{border-collapse:collapse}.bad{background:#fcc}</style><h1>GL stability: " +
-                  escape(frame) + "</h1><p><b>" + escape(s.value("verdict", "")) +
+                  escapeHtml(frame) + "</h1><p><b>" + escapeHtml(s.value("verdict", "")) +
                   "</b></p><table><tr><th>condition</th><th>what differs</th><th>identical</th><th>differing "
                   "pixels</th><th>first changing draw</th></tr>";
   for (const auto& row : s["conditions"]) {
@@ -150,9 +140,9 @@ std::string stabilityHtml(const nlohmann::json& s, const std::string& frame) {
     if (row.contains("first_changing_draw"))
       draw = "draw " + std::to_string(row["first_changing_draw"]["draw_index"].get<size_t>()) + " (command " +
              std::to_string(row["first_changing_draw"]["command_index"].get<size_t>()) + ")";
-    h += std::string("<tr") + (same ? "" : " class=bad") + "><td>" + escape(row["name"].get<std::string>()) +
-         "</td><td>" + escape(row["description"].get<std::string>()) + "</td><td>" + (same ? "yes" : "no") +
-         "</td><td>" + std::to_string(pixels) + "</td><td>" + escape(draw) + "</td></tr>";
+    h += std::string("<tr") + (same ? "" : " class=bad") + "><td>" + escapeHtml(row["name"].get<std::string>()) +
+         "</td><td>" + escapeHtml(row["description"].get<std::string>()) + "</td><td>" + (same ? "yes" : "no") +
+         "</td><td>" + std::to_string(pixels) + "</td><td>" + escapeHtml(draw) + "</td></tr>";
   }
   return h + "</table>\n";
 }

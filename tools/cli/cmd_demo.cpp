@@ -16,6 +16,7 @@
 #include "tools/cli/repo_paths.h"
 #include "verify/crosscheck.h"
 #include "verify/crosscheck_report.h"
+#include "verify/html_escape.h"
 #include "tools/cli/frame_job.h"
 #include "tools/cli/gl_options.h"
 #include "tools/cli/mta_demo.h"
@@ -37,19 +38,6 @@ struct DemoArgs {
   ResourceLimits limits;  // the scenes' frames (the atlas tree's frames are small and keep the default)
   gl::GlOptions glOptions;  // --gl-driver, --gl-version, --egl-platform
 };
-
-std::string htmlEscape(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    switch (c) {
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '&': o += "&amp;"; break;
-      default: o += c;
-    }
-  }
-  return o;
-}
 
 void runDemo(const DemoArgs& a) {
   namespace fs = std::filesystem;
@@ -142,14 +130,14 @@ void runDemo(const DemoArgs& a) {
     for (const auto& img : stats["images"]) {
       const std::string file = fs::path(img["file"].get<std::string>()).filename().string();
       if (file.ends_with(".png"))
-        imgs += fmt::format("<img src=\"{}\" title=\"{}\">", file, htmlEscape(file));
+        imgs += fmt::format("<img src=\"{}\" title=\"{}\">", file, verify::escapeHtml(file));
       else
-        imgs += fmt::format("<a href=\"{}\">{}</a> ", file, htmlEscape(file));
+        imgs += fmt::format("<a href=\"{}\">{}</a> ", file, verify::escapeHtml(file));
     }
     rows += fmt::format(
         "<tr><td><b>{}</b><br><small>{}</small></td><td>{}</td><td>{}</td><td>{}</td><td>{:.1f}</td>"
         "<td><code>{}</code></td>{}</tr>\n",
-        htmlEscape(name), htmlEscape(std::string(s.rule)), imgs, stats["counters"]["draw_calls"].dump(),
+        verify::escapeHtml(name), verify::escapeHtml(std::string(s.rule)), imgs, stats["counters"]["draw_calls"].dump(),
         stats["counters"]["texture_state_changes"].dump(), stats["timing"]["oracle_ms"].get<double>(),
         std::string(stats["image_sha256"]).substr(0, 16), crossCell);
     scenesJson.push_back(entry);
