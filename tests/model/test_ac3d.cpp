@@ -13,26 +13,11 @@
 namespace tessera::model {
 namespace {
 
+using testing::errorOf;
 using testing::ScratchDir;
 
 const std::string kWhite =
     "MATERIAL \"white\" rgb 1 1 1  amb 0.2 0.2 0.2  emis 0 0 0  spec 0.5 0.5 0.5  shi 10  trans 0\n";
-
-// Runs f, which must throw tessera::Error; returns its message.
-template <class F>
-std::string errorOf(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "threw a non-tessera exception: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "did not throw";
-  return "";
-}
-
 
 // Writes `text` as dir/name and loads it with the given limits.
 Model load(const ScratchDir& dir, const std::string& name, const std::string& text, const ResourceLimits& limits = {}) {
