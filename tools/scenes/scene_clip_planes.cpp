@@ -6,7 +6,7 @@
 
 namespace tessera::scenes {
 
-void buildClipPlanes(CommandList& cl, int w, int h) {
+void buildClipPlanesWith(CommandList& cl, int w, int h, const std::function<void(Mesh&)>& editMesh) {
   beginFrame(cl, w, h, true, {0, 0, 0, 1});
   cl.useProgram(cl.createProgram("vertex_color"));
   DepthState ds;
@@ -31,6 +31,11 @@ void buildClipPlanes(CommandList& cl, int w, int h) {
                {0.2f, c, c, 1}, {c, 0.2f, c, 1});
   }
 
+  if (editMesh) {
+    editMesh(disc);
+    editMesh(floor);
+  }
+
   const uint32_t nd = bindMesh(cl, disc);
   cl.setViewport({0, 0, w / 2, h});
   setMatrix(cl, 0, ortho(-1, 1, -1, 1, -1, 1));
@@ -48,5 +53,7 @@ void buildClipPlanes(CommandList& cl, int w, int h) {
             mul(perspective(75.0, double(w - w / 2) / h, 0.5, 40.0), lookAt({0, 0, 0}, {0, -0.3f, -1}, {0, 1, 0})));
   cl.drawIndexed(0, nf);
 }
+
+void buildClipPlanes(CommandList& cl, int w, int h) { buildClipPlanesWith(cl, w, h, {}); }
 
 }  // namespace tessera::scenes

@@ -1,6 +1,8 @@
 // Internal to the scenes library: the scene functions and the frame preamble they share.
 #pragma once
 
+#include <functional>
+
 #include "tools/scenes/builder.h"
 
 namespace tessera::scenes {
@@ -18,6 +20,9 @@ void buildWrapFilter(CommandList& cl, int w, int h);
 void buildTextureArray(CommandList& cl, int w, int h);
 void buildLayeredTarget(CommandList& cl, int w, int h);
 void buildClipPlanes(CommandList& cl, int w, int h);
+// clip_planes' frame with `editMesh` applied to the disc and then the floor before they are bound
+// (far_vertices moves vertices with it).
+void buildClipPlanesWith(CommandList& cl, int w, int h, const std::function<void(Mesh&)>& editMesh);
 void buildBlend(CommandList& cl, int w, int h);
 void buildDepth(CommandList& cl, int w, int h);
 void buildCityBlock(CommandList& cl, int w, int h);
