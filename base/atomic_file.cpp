@@ -79,13 +79,10 @@ std::string tempName(const std::string& path) { return path + ".tmp-" + std::to_
 
 }  // namespace
 
-size_t removeStaleTemporaries(const std::string& path) {
-  const fs::path p(path);
-  const std::string prefix = p.filename().string() + ".tmp-";
-  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+size_t removeEntriesOfDeadProcesses(const std::string& directory, const std::string& prefix) {
   std::error_code ec;
-  fs::directory_iterator it(dir, ec);
-  if (ec) return 0;  // the directory's problems are reported when the temporary is created
+  fs::directory_iterator it(directory, ec);
+  if (ec) return 0;  // the directory's problems are reported when something is created in it
   size_t removed = 0;
   for (; it != fs::directory_iterator(); it.increment(ec)) {
     if (ec) break;
@@ -98,9 +95,15 @@ size_t removeStaleTemporaries(const std::string& path) {
     // ESRCH: no such process. EPERM means it exists under another user: leave it.
     if (::kill(pid_t(pid), 0) == 0 || errno != ESRCH) continue;
     std::error_code rec;
-    if (fs::remove(it->path(), rec)) ++removed;
+    if (fs::remove_all(it->path(), rec) > 0 && !rec) ++removed;
   }
   return removed;
+}
+
+size_t removeStaleTemporaries(const std::string& path) {
+  const fs::path p(path);
+  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  return removeEntriesOfDeadProcesses(dir.string(), p.filename().string() + ".tmp-");
 }
 
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)), tmp_(tempName(path_)) {

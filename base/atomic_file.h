@@ -70,4 +70,8 @@ void writeFileAtomically(const std::string& path, const std::function<void(const
 // AtomicFile calls this itself; it is public for tests and for tools that clean a directory.
 size_t removeStaleTemporaries(const std::string& path);
 
+// Removes every entry `<prefix><pid>` of `directory` (a file, or a directory with its contents) whose
+// process is gone, as above. Returns how many were removed. Also used for per-process scratch folders.
+size_t removeEntriesOfDeadProcesses(const std::string& directory, const std::string& prefix);
+
 }  // namespace tessera

@@ -47,30 +47,13 @@ inline std::filesystem::path scratchRoot() {
   return "/tmp";
 }
 
-// Removes tessera-fuzz-<pid> directories whose process is gone (a crash skips the atexit clean-up).
-inline void removeDeadScratchDirs(const std::filesystem::path& root) {
-  namespace fs = std::filesystem;
-  const std::string prefix = kScratchPrefix;
-  std::error_code ec;
-  for (fs::directory_iterator it(root, ec), end; !ec && it != end; it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
-    const std::string digits = name.substr(prefix.size());
-    if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
-    const long pid = std::stol(digits);
-    if (pid <= 0 || pid == long(::getpid())) continue;
-    if (::kill(pid_t(pid), 0) == 0 || errno != ESRCH) continue;  // alive, or someone else's
-    std::error_code rec;
-    fs::remove_all(it->path(), rec);
-  }
-}
-
 struct Scratch {
   std::filesystem::path dir;
   Scratch() {
     namespace fs = std::filesystem;
     const fs::path root = scratchRoot();
-    removeDeadScratchDirs(root);
+    // A crash skips the atexit clean-up: remove the folders of processes that are gone.
+    removeEntriesOfDeadProcesses(root.string(), kScratchPrefix);
     dir = root / (kScratchPrefix + std::to_string(::getpid()));
     std::error_code ec;
     fs::create_directories(dir, ec);

@@ -203,5 +203,19 @@ TEST(AtomicFile, OnlyTemporariesOfThatOutputAreConsidered) {
   EXPECT_TRUE(fs::exists(t.file("a.png.tmp-")));
 }
 
+TEST(AtomicFile, AScratchFolderOfADeadProcessIsRemovedWithItsContentsAndALiveOnesIsKept) {
+  TempDir t;
+  const pid_t dead = ::fork();
+  if (dead == 0) ::_exit(0);
+  ::waitpid(dead, nullptr, 0);
+  const std::string gone = t.file("scratch-" + std::to_string(dead)), mine = t.file("scratch-" + std::to_string(::getpid()));
+  fs::create_directories(gone + "/sub");
+  std::ofstream(gone + "/sub/f") << "junk";
+  fs::create_directories(mine);
+  EXPECT_EQ(removeEntriesOfDeadProcesses(t.dir.string(), "scratch-"), 1u);
+  EXPECT_FALSE(fs::exists(gone));
+  EXPECT_TRUE(fs::exists(mine)) << "this process is alive";
+}
+
 }  // namespace
 }  // namespace tessera

@@ -2,7 +2,13 @@
 // gl33_tests (softpipe, GL 3.3 core): every GL implementation must reproduce it byte for byte.
 #pragma once
 
+#include <array>
+#include <cstdint>
+#include <vector>
+
 #include "raster/command_list.h"
+#include "raster/cpu_backend.h"
+#include "raster/image_io.h"
 #include "tools/scenes/builder.h"
 
 namespace tessera::gl {
@@ -57,6 +63,29 @@ inline CommandList noFreedomFrame() {
   cl.drawIndexed(18, 6);
 
   return cl;
+}
+
+// The oracle's rendering of noFreedomFrame() with provenance: its pixels (top row first, as GL reads
+// them back) and how many pixels carry a class (0 unless the frame is built wrong).
+struct NoFreedomOracle {
+  CpuBackend cpu{RenderOptions{1, true}};
+  PresentedImage presented;
+  const TextureData* tex = nullptr;
+  size_t classed = 0;
+  std::vector<uint8_t> pixels;
+  NoFreedomOracle() {
+    cpu.execute(noFreedomFrame(), "no freedom");
+    presented = cpu.presented().at(0);
+    tex = cpu.texture(presented.texture);
+    for (uint16_t c : tex->prov->classes[0]) classed += c != 0;
+    pixels = imagePixels(*tex, presented.level, presented.layer);
+  }
+};
+
+// The RGBA bytes at (x, y) in GL window coordinates (bottom row 0) of a 32 x 32 read-back.
+inline std::vector<uint8_t> noFreedomPixel(const std::vector<uint8_t>& px, int x, int y) {
+  const size_t at = (size_t(31 - y) * 32 + size_t(x)) * 4;
+  return std::vector<uint8_t>(px.begin() + long(at), px.begin() + long(at) + 4);
 }
 
 }  // namespace tessera::gl
