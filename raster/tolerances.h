@@ -58,6 +58,8 @@ constexpr double kSamplePosPx = 1.0 / 128.0;
 constexpr double kInterpRel = 1.0 / 1048576.0;  // 2^-20
 
 // Absolute depth error: 2^-21. GL 4.6 §13.8 (depth precision is not specified, spec-choices V5).
+// Like kInterpRel and the position terms, it bounds one fragment's depth; a depth test adds the bounds
+// of both fragments, the stored one's kept per candidate (CandidateDepth in provenance.h).
 // docs/crosscheck.md, row DEPTH_NEAR_EQUAL.
 constexpr double kDepthAbs = 1.0 / 2097152.0;  // 2^-21
 
