@@ -9,6 +9,7 @@
 #include <cstring>
 #include <map>
 
+#include "raster/depth_signature.h"
 #include "raster/provenance.h"
 #include "raster/tolerances.h"
 #include "raster/rast.h"
@@ -93,6 +94,9 @@ struct CpuBackend::Impl {
   RenderTarget target;
   bool targetBound = false;
   uint64_t drawSerial = 0;  // draws issued so far (provenance: DrawState::drawSerial)
+  // Provenance: the depth epoch (raster/depth_signature.h), advanced by every clear, render-target
+  // change and texture upload.
+  uint32_t depthEpoch = 1;
 
   Scene scene;
   PipelineStats stats;
@@ -145,11 +149,13 @@ struct CpuBackend::Impl {
   void setTarget(const RenderTarget& t) {
     if (targetBound && t == target) return;
     flush();
+    ++depthEpoch;
     target = t;
     targetBound = true;
     scene.begin(resolveTarget(t));
     scene.provenance = options.provenance;
     scene.edgeMarginSub = tolerance::edgeMarginSub(options.otherSubpixelBits);
+    scene.vertexSnapPx = tolerance::vertexSnapPx(options.otherSubpixelBits);
     if (options.provenance)
       for (TextureData* c : scene.target.color)
         if (c && !c->prov) c->prov = std::make_shared<Provenance>(*c);
@@ -166,6 +172,7 @@ struct CpuBackend::Impl {
     if (scissor.enabled) r = intersect(r, scissor.rect);
     if (r.w == 0 || r.h == 0) return;
     const uint32_t index = uint32_t(scene.clears.size());
+    ++depthEpoch;
     scene.clears.push_back({attachment, bits, r});
     // Bin into every tile the rectangle touches, in order with the triangles.
     for (int32_t ty = r.y >> kTileOrder; ty <= (r.y + r.h - 1) >> kTileOrder; ++ty)
@@ -192,7 +199,38 @@ struct CpuBackend::Impl {
     ds->varyings = ds->program->varyingCount();
     ds->clampRect = clampRect();
     ds->colorOutputs = std::min(ds->program->colorOutputs(), kMaxColorAttachments);
+    if (options.provenance) ds->depthSigBase = depthSigBase(*ds);
+    ds->depthEpoch = depthEpoch;
     return ds;
+  }
+
+  // The draw-wide part of the depth-writer signature (raster/depth_signature.h): the program, its
+  // uniforms, the texture bindings, the viewport, the raster state, the depth-test enable, the blend
+  // enable, the target's level and the epoch. Left out, as GL 4.6 Appendix A Rule 2 allows: the
+  // framebuffer contents, write masks and scissor ("required"), and the depth function and blend
+  // parameters ("strongly suggested", a pin: docs/crosscheck.md DEPTH_NEAR_EQUAL).
+  uint64_t depthSigBase(const DrawState& ds) const {
+    uint64_t h = sigMix(0x6a09e667f3bcc908ull, depthEpoch);
+    h = sigMix(h, reinterpret_cast<uintptr_t>(ds.program));
+    h = sigMixFloats(h, ds.uniforms[0].data(), size_t(kMaxUniformSlots) * 4);
+    for (int u = 0; u < kMaxTextureUnits; ++u) h = sigMix(sigMix(h, unitTexture[size_t(u)]), unitSampler[size_t(u)]);
+    for (int32_t v : {viewport.x, viewport.y, viewport.w, viewport.h}) h = sigMix(h, uint32_t(v));
+    h = sigMix(h, uint64_t(raster.cull) | uint64_t(raster.frontCcw) << 8 | uint64_t(raster.clipMask) << 16);
+    h = sigMix(h, uint64_t(ds.depth.test) | uint64_t(ds.blend.enabled) << 1);
+    return sigMix(h, uint64_t(target.level) << 32 | target.layer);
+  }
+
+  // The signature of one primitive of the draw: the base, the position inputs of its vertices
+  // (attribute 0) and their post-vertex-stage positions and clip distances, bitwise, and its layer.
+  static uint64_t depthSig(const DrawState& ds, const VertexIn* (&in)[3], const VertexOut (&v)[3], uint32_t layer) {
+    if (ds.program->hasGeometryStage()) return 0;
+    uint64_t h = ds.depthSigBase;
+    for (int k = 0; k < 3; ++k) {
+      h = sigMixFloats(h, in[k]->attr[0].data(), 4);
+      h = sigMixFloats(h, v[k].pos.data(), 4);
+      h = sigMixFloats(h, v[k].clip, kMaxClipDistances);
+    }
+    return sigFinish(sigMix(h, layer));
   }
 
   void fetchVertex(uint32_t index, VertexIn& in) const {
@@ -278,7 +316,12 @@ struct CpuBackend::Impl {
         const uint32_t t0 = uint32_t(c * kSetupChunk), t1 = std::min<uint32_t>(triCount, t0 + uint32_t(kSetupChunk));
         for (uint32_t t = t0; t < t1; ++t) {
           VertexOut v[3];
-          for (int k = 0; k < 3; ++k) v[k] = out[dense ? idx[3 * t + uint32_t(k)] - lo : 3 * t + uint32_t(k)];
+          const VertexIn* vin[3];
+          for (int k = 0; k < 3; ++k) {
+            const size_t s = dense ? idx[3 * t + uint32_t(k)] - lo : 3 * t + uint32_t(k);
+            v[k] = out[s];
+            vin[k] = &in[s];
+          }
           uint32_t layer = 0;
           if (ds.program->hasGeometryStage() && !ds.program->shadeTriangle(v, t, layer, ds.ctx)) {
             ++sink.stats.primitives_assembled;
@@ -296,7 +339,12 @@ struct CpuBackend::Impl {
           } else {
             layer = target.layer;  // gl_Layer is ignored for a non-layered target
           }
+          const size_t first = sink.tris.size();
           setupTriangle(v, t, layer, params, sink);
+          if (params.provenance) {
+            const uint64_t sig = depthSig(ds, vin, v, layer);
+            for (size_t i = first; i < sink.tris.size(); ++i) sink.tris[i].depthSig = sig;
+          }
         }
       }
     });
@@ -321,6 +369,7 @@ struct CpuBackend::Impl {
     auto src = l.bytes(c.data);
     TextureData& t = *textures[c.id];
     t.prov.reset();  // uploaded texels are exact: no interval any more
+    ++depthEpoch;
     const uint64_t bytes = levelBytes(t.desc, c.level);
     std::memcpy(t.levels[c.level].data() + bytes * c.layer, src.data(), src.size());
   }

@@ -28,6 +28,10 @@ struct DrawState {
   int colorOutputs = 1;
   Rect clampRect;  // viewport ∩ scissor ∩ target of the draw (provenance mode widens bboxes within it)
   uint64_t drawSerial = 0;  // provenance: the draw's number in the list (edge tags correlate one draw only)
+  // Provenance: the part of the depth-writer signature shared by the draw's triangles, and the depth
+  // epoch it was issued in (raster/depth_signature.h).
+  uint64_t depthSigBase = 0;
+  uint32_t depthEpoch = 0;
 };
 
 // A triangle after clipping, snapping and setup. Coordinates are in sub-pixels (8 fractional bits)
@@ -56,6 +60,9 @@ struct TriSetup {
   int64_t vx[3], vy[3];
   uint8_t edgeKind[3];  // EdgeKind
   double clipMarginSub[3];
+  // Provenance only: the depth-writer signature of the primitive (raster/depth_signature.h): equal
+  // signatures give bit-identical fragment depths in GL at any one pixel (Appendix A); 0 = none.
+  uint64_t depthSig;
 };
 
 // What made an edge of a triangle (provenance mode).
@@ -91,6 +98,7 @@ struct Scene {
   TargetView target;
   bool provenance = false;  // track per-pixel intervals (provenance.h); bins use 1-px-wider bboxes
   double edgeMarginSub = 0.0;  // provenance: tolerance::edgeMarginSub of the judged implementation
+  double vertexSnapPx = 0.0;   // provenance: tolerance::vertexSnapPx of the judged implementation
   std::vector<std::unique_ptr<DrawState>> states;
   std::vector<TriSetup> tris;
   std::vector<ClearCmd> clears;

@@ -21,6 +21,7 @@ Provenance::Provenance(const TextureData& tex)
     classes.emplace_back(n, uint16_t(0));
     flags.emplace_back(n, uint8_t(0));
     candidates.emplace_back(n);
+    depth.emplace_back(n);
   }
 }
 

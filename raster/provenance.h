@@ -58,13 +58,24 @@ struct EdgeTag {
   bool operator==(const EdgeTag&) const = default;
 };
 
+// The depth buffer as one candidate's chain of outcomes left it (docs/crosscheck.md, DEPTH_NEAR_EQUAL):
+// an interval that holds GL's stored depth in that chain (the writer's depth and its own precision),
+// and the depth-writer signature of the fragment that wrote it (raster/depth_signature.h; 0 = not
+// known). Valid only in the depth epoch it was recorded in; otherwise the depth is the oracle's.
+struct CandidateDepth {
+  float lo = 0.0f, hi = 0.0f;
+  uint64_t sig = 0;
+  uint32_t epoch = 0;  // 0 = never recorded
+};
+
 // One whole result of a pixel: per channel [lo, hi] in channel units (bytes for unorm, the value for
-// float and uint formats), and the edge constraints under which it was produced.
+// float and uint formats), the edge constraints under which it was produced, and the depth it left.
 struct Candidate {
   static constexpr int kMaxTags = 2;
   std::array<double, 4> lo{}, hi{};
   std::array<EdgeTag, kMaxTags> tags{};
   uint8_t tagCount = 0;
+  CandidateDepth depth;
 };
 
 // The most candidates a pixel keeps. A larger set collapses to its hull (one candidate, no tags),
@@ -80,6 +91,8 @@ struct Provenance {
   // Per level, same layout: the candidates of a pixel whose set is not its hull alone (two or more
   // candidates, or tags). Empty means one candidate, [lo, hi] of the images.
   std::vector<std::vector<std::vector<Candidate>>> candidates;
+  // Per level, same layout: the depth of a pixel whose candidate set is empty (its one candidate).
+  std::vector<std::vector<CandidateDepth>> depth;
   explicit Provenance(const TextureData& tex);
   size_t index(const TextureData& tex, uint32_t level, uint32_t layer, uint32_t x, uint32_t y) const;
   uint16_t& cls(const TextureData& tex, uint32_t level, uint32_t layer, uint32_t x, uint32_t y);

@@ -7,7 +7,10 @@
 //   an endpoint made by clipping, GL's float clipping), so another legal implementation may cover it
 //   or not: every candidate forks into "written" and "not written". Near an edge shared with another
 //   triangle the two are correlated by edge tags (no gap, no double hit).
-// - DEPTH_NEAR_EQUAL: the depth test is within the depth tolerance of flipping: the same fork.
+// - DEPTH_NEAR_EQUAL: the depth test is within the depth tolerance of flipping: the same fork. Each
+//   candidate carries the depth its own chain left (CandidateDepth), so a later test is decided per
+//   candidate; where the stored depth's writer has the incoming fragment's depth-writer signature
+//   the tie is exact (GL's invariance, raster/depth_signature.h) and does not fork.
 // - the program's output box: three runs (lower bound, upper bound, value) with the sampler in
 //   interval mode, widened by the output-rounding tolerance.
 // - BLEND_PRECISION: blending is evaluated at the 16 corners of (src, src alpha, dst, dst alpha) per
@@ -86,16 +89,72 @@ struct PixelUpdate {
   bool hasEdge;      // coverTie comes from exactly one edge of a triangle made without clipping
   EdgeTag edge;      // that edge, with covered = true
   uint16_t classes;  // classes of the fragment (sampler + coverage + depth)
+  // The depth test per candidate (depthOutcome): the fragment's depth and its precision, the oracle's
+  // stored depth before it, the test, and the fragment's depth-writer signature and epoch.
+  bool depthTest, depthWrite, depthUnbounded;
+  CompareFunc func;
+  float z, zStored;
+  double zTol;
+  uint64_t depthSig;
+  uint32_t depthEpoch;
 };
 
-// Whether a fragment that the candidate's coverage outcome `covered` produced is written.
-inline void writeOutcomes(const PixelUpdate& u, bool covered, bool& canWrite, bool& canSkip) {
+// The depth a candidate's chain left: its own record in this epoch, else the oracle's stored depth.
+inline CandidateDepth depthOf(const CandidateDepth& d, const PixelUpdate& u) {
+  if (d.epoch == u.depthEpoch) return d;
+  return CandidateDepth{u.zStored, u.zStored, 0, u.depthEpoch};
+}
+
+// Whether the fragment passes the depth test against a candidate's depth, and whether another legal
+// implementation may decide otherwise (docs/crosscheck.md, DEPTH_NEAR_EQUAL). A stored depth written
+// by a fragment with the same depth-writer signature is GL's own value for this fragment, bit for bit
+// (Appendix A), so the test compares equal values exactly. Otherwise the test may flip where the
+// fragment's depth interval meets the stored one; ALWAYS and NEVER never flip.
+struct DepthOutcome {
+  bool pass, tie;
+};
+inline DepthOutcome depthOutcome(const CandidateDepth& d, const PixelUpdate& u) {
+  if (!u.depthTest) return {true, false};
+  if (u.depthSig != 0 && d.sig == u.depthSig) return {depthPasses(u.func, u.z, u.z), false};
+  const bool pass = depthPasses(u.func, u.z, d.lo);
+  if (u.func == CompareFunc::Always || u.func == CompareFunc::Never) return {pass, false};
+  const bool tie = u.depthUnbounded || (double(u.z) + u.zTol >= double(d.lo) && double(u.z) - u.zTol <= double(d.hi));
+  return {pass, tie};
+}
+
+// The depth a candidate holds after the fragment wrote it: the fragment's depth within its precision.
+inline CandidateDepth writtenDepth(const CandidateDepth& before, const PixelUpdate& u) {
+  if (!u.depthWrite) return before;
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  CandidateDepth d;
+  const double l = double(u.z) - u.zTol, h = double(u.z) + u.zTol;
+  d.lo = float(l), d.hi = float(h);  // rounded outward below
+  if (double(d.lo) > l) d.lo = std::nextafter(d.lo, -kInf);
+  if (double(d.hi) < h) d.hi = std::nextafter(d.hi, kInf);
+  if (u.depthUnbounded) d.lo = -kInf, d.hi = kInf;
+  d.sig = u.depthSig;
+  d.epoch = u.depthEpoch;
+  return d;
+}
+
+// Two chains merged into one candidate: the depth of either (the hull), a signature only if shared.
+inline CandidateDepth mergeDepth(const CandidateDepth& a, const CandidateDepth& b) {
+  if (a.epoch != b.epoch) return CandidateDepth{};  // one is not recorded: the oracle's depth
+  CandidateDepth m = a;
+  m.lo = std::min(a.lo, b.lo), m.hi = std::max(a.hi, b.hi);
+  if (a.sig != b.sig) m.sig = 0;
+  return m;
+}
+
+// Whether a fragment that the candidate's coverage outcome `covered` produced is written, given the
+// candidate's depth test.
+inline void writeOutcomes(const PixelUpdate& u, const DepthOutcome& d, bool covered, bool& canWrite, bool& canSkip) {
   if (!covered || u.discarded) {
     canWrite = false, canSkip = true;
     return;
   }
-  canWrite = u.depthPass || u.depthTie;
-  canSkip = !u.depthPass || u.depthTie;
+  canWrite = d.pass || d.tie;
+  canSkip = !d.pass || d.tie;
 }
 
 // The channel layout of a target format for candidate boxes.
@@ -261,8 +320,11 @@ inline void setTag(Candidate& c, const EdgeTag& t) {
 // Adds `c` to `set` unless a candidate with the same tags already contains its box; drops the ones
 // that `c` contains.
 void addCandidate(const ChannelKind& k, std::vector<Candidate>& set, const Candidate& c) {
-  for (const Candidate& o : set)
-    if (sameTags(o, c) && boxInside(k, c, o)) return;
+  for (Candidate& o : set)
+    if (sameTags(o, c) && boxInside(k, c, o)) {
+      o.depth = mergeDepth(o.depth, c.depth);
+      return;
+    }
   // The same box under other edge assumptions: one candidate that keeps only the assumptions both
   // share (dropping a tag only makes the candidate more permissive).
   for (Candidate& o : set)
@@ -272,11 +334,15 @@ void addCandidate(const ChannelKind& k, std::vector<Candidate>& set, const Candi
       for (int i = 0; i < o.tagCount; ++i)
         for (int j = 0; j < c.tagCount; ++j)
           if (o.tags[size_t(i)] == c.tags[size_t(j)]) m.tags[m.tagCount++] = o.tags[size_t(i)];
+      m.depth = mergeDepth(o.depth, c.depth);
       o = m;
       return;
     }
+  Candidate added = c;
+  for (const Candidate& o : set)
+    if (sameTags(o, c) && boxInside(k, o, c)) added.depth = mergeDepth(added.depth, o.depth);
   std::erase_if(set, [&](const Candidate& o) { return sameTags(o, c) && boxInside(k, o, c); });
-  set.push_back(c);
+  set.push_back(added);
 }
 
 // One fragment at one pixel of one attachment: every candidate forks into the outcomes legal for
@@ -299,10 +365,12 @@ void updatePixel(TextureData& tex, const TargetView& tv, uint32_t layer, int32_t
   if (stored.empty()) {
     Candidate c;
     for (int ch = 0; ch < k.n; ++ch) c.lo[ch] = loadChannel(k, lo, ch), c.hi[ch] = loadChannel(k, hi, ch);
+    c.depth = pv.depth[tv.level][idx];
     before.push_back(c);
   } else {
     before = stored;
   }
+  for (Candidate& c : before) c.depth = depthOf(c.depth, u);
   double oldVal[4] = {};
   for (int ch = 0; ch < k.n; ++ch) oldVal[ch] = loadChannel(k, val, ch);
 
@@ -324,10 +392,11 @@ void updatePixel(TextureData& tex, const TargetView& tv, uint32_t layer, int32_t
         covOptions[0] = true, covOptions[1] = false, nCov = 2;
       }
     }
+    const DepthOutcome dOut = depthOutcome(c.depth, u);
     for (int ki = 0; ki < nCov; ++ki) {
       const bool cov = covOptions[ki];
       bool canWrite, canSkip;
-      writeOutcomes(u, cov, canWrite, canSkip);
+      writeOutcomes(u, dOut, cov, canWrite, canSkip);
       Candidate base = c;
       if (u.hasEdge && u.coverTie) {
         EdgeTag t = u.edge;
@@ -342,6 +411,7 @@ void updatePixel(TextureData& tex, const TargetView& tv, uint32_t layer, int32_t
       if (canWrite) {
         Candidate w;
         writtenBox(k, f, u, blend, base, w, classes);
+        w.depth = writtenDepth(base.depth, u);
         if (onChain && oracleOutcomeCov && u.keepValue) oracleChain = int(after.size());
         addCandidate(k, after, w);
       }
@@ -367,6 +437,9 @@ void updatePixel(TextureData& tex, const TargetView& tv, uint32_t layer, int32_t
   Candidate hull = after.empty() ? before[0] : after[0];
   for (const Candidate& c : after)
     for (int ch = 0; ch < k.n; ++ch) hull.lo[ch] = std::min(hull.lo[ch], c.lo[ch]), hull.hi[ch] = std::max(hull.hi[ch], c.hi[ch]);
+  CandidateDepth depthHull = after.empty() ? before[0].depth : after[0].depth;
+  for (const Candidate& c : after) depthHull = mergeDepth(depthHull, c.depth);
+  pv.depth[tv.level][idx] = depthHull;  // read only when the set below is empty
   if (after.size() > kMaxCandidates) {
     pv.flags[tv.level][idx] |= kFallback;
     after.clear();
@@ -382,6 +455,38 @@ void updatePixel(TextureData& tex, const TargetView& tv, uint32_t layer, int32_t
   if (blend.enabled || u.ambiguous) classes |= dstCls;
   if (!u.keepValue && !u.ambiguous) classes = dstCls;
   cls = exact ? 0 : classes;
+}
+
+// Marks the depth records of a pixel's candidates as unknown.
+void forgetDepth(TextureData& tex, const TargetView& tv, uint32_t layer, int32_t x, int32_t y) {
+  Provenance& pv = *tex.prov;
+  const size_t idx = pv.index(tex, tv.level, layer, uint32_t(x), uint32_t(y));
+  pv.depth[tv.level][idx].epoch = 0;
+  for (Candidate& c : pv.candidates[tv.level][idx]) c.depth.epoch = 0;
+}
+
+// Whether a candidate of the pixel, in an attachment the fragment updates, may decide the depth test
+// otherwise than the oracle (`oraclePass`): a near tie, or a chain whose stored depth differs from the
+// oracle's. Without such an attachment, the oracle's own stored depth decides.
+bool depthMayDiffer(const DrawState& ds, const TargetView& tv, uint32_t layer, int32_t x, int32_t y, const PixelUpdate& u,
+                    bool oraclePass) {
+  auto differs = [&](const CandidateDepth& d) {
+    const DepthOutcome o = depthOutcome(depthOf(d, u), u);
+    return o.tie || o.pass != oraclePass;
+  };
+  bool any = false;
+  for (int a = 0; a < ds.colorOutputs; ++a) {
+    const TextureData* c = tv.color[size_t(a)];
+    if (!c || !c->prov) continue;
+    any = true;
+    const Provenance& pv = *c->prov;
+    const size_t idx = pv.index(*c, tv.level, layer, uint32_t(x), uint32_t(y));
+    const std::vector<Candidate>& set = pv.candidates[tv.level][idx];
+    if (set.empty() && differs(pv.depth[tv.level][idx])) return true;
+    for (const Candidate& cand : set)
+      if (differs(cand.depth)) return true;
+  }
+  return !any && differs(CandidateDepth{});
 }
 
 }  // namespace
@@ -431,9 +536,19 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
   for (int i = 0; i < 3; ++i) clipPx = std::max(clipPx, t.clipMarginSub[i] / double(kSubpixelOne));
   const bool unbounded = !(clipPx < 65536.0);
   const double posTolPx = tolerance::kSamplePosPx + (unbounded ? 0.0 : clipPx);
-  const double tolZ = tolerance::kDepthAbs + (std::fabs(dzdx) + std::fabs(dzdy)) * posTolPx;
+  // Depth: the sample shift above or, where GL's snapping grid is coarser, the vertex snapping move
+  // (tolerance::vertexSnapPx), plus a clipped vertex's move.
+  const double posTolZ = std::max(tolerance::kSamplePosPx, scene.vertexSnapPx) + (unbounded ? 0.0 : clipPx);
+  const double tolZ = tolerance::kDepthAbs + (std::fabs(dzdx) + std::fabs(dzdy)) * posTolZ;
   const bool depthTest = ds.depth.test && tv.depth;
   const bool depthWrite = depthTest && ds.depth.write;
+  PixelUpdate du{};  // the depth fields shared by the triangle's fragments (depthOutcome)
+  du.depthTest = depthTest;
+  du.depthWrite = depthWrite;
+  du.depthUnbounded = unbounded;
+  du.func = ds.depth.func;
+  du.depthSig = t.depthSig;
+  du.depthEpoch = ds.depthEpoch;
 
   ShadeProvenance& sp = shadeProvenance();
   Quad quad;
@@ -465,17 +580,17 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
       for (int p = 0; p < 4; ++p) z[p] = interpolatePixel(t, ds.varyings, e[p], quad.var[p]);
 
       uint8_t pass = cov | tie, nearDepth = 0;
+      float zStored[4] = {};
       if (depthTest) {
         for (int p = 0; p < 4; ++p) {
           if (!((cov | tie) >> p & 1)) continue;
           const float stored = loadDepth(*tv.depth, tv.level, t.layer, qx + (p & 1), qy + (p >> 1));
+          zStored[p] = stored;
           if (!depthPasses(ds.depth.func, z[p], stored)) pass &= uint8_t(~(1u << p));
-          // GL's invariance rule (Appendix A) makes EQUAL exact for identical input, so an exact
-          // equality under EQUAL / NOTEQUAL is not a near tie.
-          const bool invariant = (ds.depth.func == CompareFunc::Equal || ds.depth.func == CompareFunc::NotEqual) &&
-                                 z[p] == stored;
-          if (unbounded || (!invariant && std::fabs(double(z[p]) - stored) <=
-                                              tolZ + std::fabs(double(stored)) * tolerance::kInterpRel))
+          // Ambiguous when some candidate's chain may decide the test otherwise (depthOutcome).
+          PixelUpdate q = du;
+          q.z = z[p], q.zStored = stored, q.zTol = tolZ + std::fabs(double(z[p])) * tolerance::kInterpRel;
+          if (depthMayDiffer(ds, tv, t.layer, qx + (p & 1), qy + (p >> 1), q, pass >> p & 1))
             nearDepth |= uint8_t(1u << p);
         }
       }
@@ -517,6 +632,9 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
         u.ambiguous = amb;
         u.dontCare = sp.dontCare[size_t(p)] || unbounded;
         u.posTolPx = posTolPx;
+        u.depthTest = du.depthTest, u.depthWrite = du.depthWrite, u.depthUnbounded = du.depthUnbounded;
+        u.func = du.func, u.depthSig = du.depthSig, u.depthEpoch = du.depthEpoch;
+        u.z = z[p], u.zStored = zStored[p], u.zTol = tolZ + std::fabs(double(z[p])) * tolerance::kInterpRel;
         // A tie near exactly one edge that is no clipped edge is correlated with the triangle on the
         // other side of that edge (EdgeTag).
         const uint8_t nm = nearMask[p];
@@ -540,6 +658,11 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
             default: break;
           }
         }
+        // Attachments the program has no output for are not forked here: a depth this fragment may
+        // write leaves their chains' depth records unknown (the oracle's depth decides for them).
+        if (depthWrite)
+          for (int a = ds.colorOutputs; a < kMaxColorAttachments; ++a)
+            if (TextureData* c = tv.color[size_t(a)]; c && c->prov) forgetDepth(*c, tv, t.layer, x, y);
         if (keep) ++stats.pixels_written;
       }
     }

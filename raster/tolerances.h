@@ -30,6 +30,13 @@ inline double edgeMarginSub(int bits) {
   return kSqrt2 * (0.5 + 256.0 / double(1 << b));
 }
 
+// The same per-axis bound on how far GL's snapped vertex may sit from the oracle's, in pixels: one
+// 1/256 step at 8 bits, else half the oracle's step plus one of GL's. A point inside a triangle moves
+// with the affine interpolation of its vertices' moves, so by at most this much per axis too; its
+// depth at a fixed pixel centre then changes by at most (|dz/dx| + |dz/dy|) times it.
+// docs/crosscheck.md, row DEPTH_NEAR_EQUAL.
+inline double vertexSnapPx(int bits) { return edgeMarginSub(bits) / (1.4142135623730951 * 256.0); }
+
 // Relative error of a clip-space component of a vertex that clipping made, in units of the largest
 // clip-space magnitude among the primitive's vertices: 2^-18. GL 4.6 §13.7 gives the new vertex
 // exactly (P = t P1 + (1 - t) P2 with t from the clip distances), §2.3.4.1 leaves the precision to the
@@ -51,6 +58,8 @@ constexpr double kSamplePosPx = 1.0 / 128.0;
 constexpr double kInterpRel = 1.0 / 1048576.0;  // 2^-20
 
 // Absolute depth error: 2^-21. GL 4.6 §13.8 (depth precision is not specified, spec-choices V5).
+// Like kInterpRel and the position terms, it bounds one fragment's depth; a depth test adds the bounds
+// of both fragments, the stored one's kept per candidate (CandidateDepth in provenance.h).
 // docs/crosscheck.md, row DEPTH_NEAR_EQUAL.
 constexpr double kDepthAbs = 1.0 / 2097152.0;  // 2^-21
 
