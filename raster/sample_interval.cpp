@@ -123,17 +123,20 @@ void intervalPass(const TexUnit& u, float s, float t, float r, bool array, const
   if (derCount > 1 && exact[1] != exact[0]) classes |= kHelperDeriv;
 
   // Lambda candidates: the ends, the oracle's, and both sides of every switch point inside
-  // (integers: level pairs and the mag/min switch at c = 0; k + 1/2: nearest-mip rounding).
-  int32_t lam[18];
+  // (integers: level pairs and the mag/min switch at c = 0; k + 1/2: nearest-mip rounding). A level
+  // pair (k - 1, k) spans lambda in (k - 1, k): its group is looked up at both ends of its part of the
+  // range, so k - 1/256 (the weight 255/256 of level k) is a switch point too.
+  constexpr int kMaxLam = 32;
+  int32_t lam[kMaxLam];
   int nl = 0;
   lam[nl++] = lamOracle;
   lam[nl++] = lamLo;
   lam[nl++] = lamHi;
   const int32_t kMaxK = int32_t(d.levels) + 1;
-  for (int32_t k = 0; k <= kMaxK && nl < 16; ++k)
-    for (int32_t off : {0, 1, 128, 129}) {
+  for (int32_t k = 0; k <= kMaxK; ++k)
+    for (int32_t off : {-1, 0, 1, 128, 129}) {
       const int32_t v = k * 256 + off;
-      if (v > lamLo && v < lamHi && nl < 18) lam[nl++] = v;
+      if (v > lamLo && v < lamHi && nl < kMaxLam) lam[nl++] = v;
     }
 
   // Layer candidates.
