@@ -239,3 +239,16 @@ TEST(Candidates, APixelBetweenTwoLegalLodLevelsAcceptsEitherLevelButNoValueBetwe
   EXPECT_EQ(js["lookup_fallbacks"].get<uint64_t>(), 0u);
   EXPECT_GE(js["per_class"]["LOD_NEAR_SWITCH"]["max_candidates"].get<uint64_t>(), 2u);
 }
+
+TEST(Candidates, APixelWhoseLookupsFellBackToTheirHullIsCountedInTheReport) {
+  // rast_provenance.cpp flags kLookupFallback where a fragment had two lookups with several candidates
+  // (or a lookup with more than kMaxLookupCandidates); the report counts such pixels per image and per
+  // class, as it counts kFallback.
+  Rendered r = render(twoLevelFrame());
+  r.tex->prov->flags[r.img.level][storeIndex(r, 5)] |= kLookupFallback;
+  r.tex->prov->flags[r.img.level][storeIndex(r, 9)] |= kLookupFallback;
+  const nlohmann::json js = verify::toJson(judgeOf(r, r.pixels));
+  EXPECT_EQ(js["lookup_fallbacks"].get<uint64_t>(), 2u);
+  EXPECT_EQ(js["per_class"]["LOD_NEAR_SWITCH"]["lookup_fallbacks"].get<uint64_t>(), 2u);
+  EXPECT_EQ(js["candidate_fallbacks"].get<uint64_t>(), 0u);
+}

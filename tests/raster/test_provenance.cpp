@@ -16,6 +16,8 @@
 #include <cstring>
 
 #include "raster/provenance.h"
+#include "raster/sample.h"
+#include "raster/texture.h"
 #include "tests/raster/render_helpers.h"
 #include "tools/scenes/builder.h"
 #include "tools/scenes/scenes.h"
@@ -569,4 +571,53 @@ TEST(ProvenanceClasses, ALinearLookupAtATexelCentreGetsNoFilterPrecisionWidening
         EXPECT_LE(reach, 4) << x << "," << y;
       }
     }
+}
+
+TEST(ProvenanceLookups, TwoLookupsWithSeveralCandidatesInOneFragmentAreCountedForTheHullFallback) {
+  // An R8 8 x 8 texture, NEAREST_MIPMAP_NEAREST: level 0 flat 0, level 1 flat 255, the rest 100. A quad
+  // with ds/dx = 2^0.47 / 8 (t constant) has lambda = 0.47: level 0 for the oracle, level 1 legal too
+  // (1/16 LOD tolerance), so each lookup has two candidates, {0} and {255}. The sampler counts, in the
+  // lower-bound hull run, how many lookups of each pixel had several candidates; with two, the
+  // rasterizer keeps the hull runs and flags the pixel kLookupFallback (rast_provenance.cpp).
+  TextureDesc d;
+  d.kind = TextureKind::Tex2D;
+  d.format = Format::R8;
+  d.width = d.height = 8;
+  d.levels = 4;
+  TextureData tex(d);
+  for (uint32_t l = 0; l < 4; ++l) std::fill(tex.levels[l].begin(), tex.levels[l].end(), l == 0 ? 0 : (l == 1 ? 255 : 100));
+  SamplerState ss;
+  ss.minFilter = Filter::NearestMipmapNearest;
+  ss.magFilter = Filter::Nearest;
+  TexUnit u;
+  u.tex = &tex;
+  u.sampler = SamplerQ::from(ss);
+  const float k = 1.385109f / 8.0f;  // 2^0.47 texels per pixel
+  const float s[4] = {0.3f, 0.3f + k, 0.3f, 0.3f + k}, t[4] = {0.5f, 0.5f, 0.5f, 0.5f};
+  ShadeProvenance& sp = shadeProvenance();
+  sp.active = true;
+  sp.resetPixels();
+  float out[4][4];
+  sp.bound = SampleBound::Lo;
+  sampleQuad2D(u, s, t, 0.0f, out);  // one lookup
+  for (int p = 0; p < 4; ++p) {
+    EXPECT_EQ(sp.forkingLookups[size_t(p)], 1) << p;
+    EXPECT_EQ(sp.lookupCandidates[size_t(p)], 2) << p;
+    EXPECT_EQ(out[p][0], 0.0f) << "the hull's lower bound: level 0";
+  }
+  sampleQuad2D(u, s, t, 0.0f, out);  // a second one in the same fragment
+  for (int p = 0; p < 4; ++p) EXPECT_EQ(sp.forkingLookups[size_t(p)], 2) << p;
+  // The candidates themselves: candidate 1 is level 1 in both bounds, candidate 0 the oracle's level 0.
+  sp.candidate = 1;
+  sampleQuad2D(u, s, t, 0.0f, out);
+  for (int p = 0; p < 4; ++p) EXPECT_EQ(out[p][0], 1.0f) << p;
+  sp.candidate = 0;
+  sp.bound = SampleBound::Hi;
+  sampleQuad2D(u, s, t, 0.0f, out);
+  for (int p = 0; p < 4; ++p) EXPECT_EQ(out[p][0], 0.0f) << p;
+  // Counting happens only in the lower-bound hull run.
+  for (int p = 0; p < 4; ++p) EXPECT_EQ(sp.forkingLookups[size_t(p)], 2) << p;
+  sp.resetPixels();
+  sp.active = false;
+  sp.bound = SampleBound::Value;
 }
