@@ -422,8 +422,8 @@ uint32_t blendedChannels(const TexUnit& u, const Plan& p, float s, float t, uint
     const uint8_t* base = L.data + layer * L.layerStride;
     const float uu = s * L.fw, vv = t * L.fh;
     if (!p.linear) {
-      taps[n++] = texelPtr(p, base, L, wrapIndex(p.wrapS, nearestIndex(uu), L.w), wrapIndex(p.wrapT, nearestIndex(vv), L.h),
-                           bpt);
+      const int32_t i = wrapIndex(p.wrapS, nearestIndex(uu), L.w), j = wrapIndex(p.wrapT, nearestIndex(vv), L.h);
+      taps[n++] = texelPtr(p, base, L, i, j, bpt);
       continue;
     }
     const int64_t U = linearFixed(uu), V = linearFixed(vv);

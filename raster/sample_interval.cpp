@@ -167,8 +167,11 @@ void intervalPass(const TexUnit& u, float s, float t, float r, bool array, const
       }
     }
     if (blended) classes |= kFilterPrecision;
-    const GroupKey key{p.lv[0].w, p.lv[0].h, p.levelCount == 2 ? p.lv[1].w : 0, p.levelCount == 2 ? p.lv[1].h : 0,
-                       p.levelCount, p.linear, layer, p.linear ? -1 : a, p.linear ? -1 : b};
+    GroupKey key{};
+    key.w0 = p.lv[0].w, key.h0 = p.lv[0].h;
+    key.w1 = p.levelCount == 2 ? p.lv[1].w : 0, key.h1 = p.levelCount == 2 ? p.lv[1].h : 0;
+    key.levels = p.levelCount, key.linear = p.linear, key.layer = layer;
+    key.a = p.linear ? -1 : a, key.b = p.linear ? -1 : b;
     for (Group& g : groups)
       if (g.key == key) {
         g.box.add(l, h);

@@ -585,7 +585,8 @@ TEST(ProvenanceLookups, TwoLookupsWithSeveralCandidatesInOneFragmentAreCountedFo
   d.width = d.height = 8;
   d.levels = 4;
   TextureData tex(d);
-  for (uint32_t l = 0; l < 4; ++l) std::fill(tex.levels[l].begin(), tex.levels[l].end(), l == 0 ? 0 : (l == 1 ? 255 : 100));
+  for (uint32_t l = 0; l < 4; ++l)
+    std::fill(tex.levels[l].begin(), tex.levels[l].end(), uint8_t(l == 0 ? 0 : (l == 1 ? 255 : 100)));
   SamplerState ss;
   ss.minFilter = Filter::NearestMipmapNearest;
   ss.magFilter = Filter::Nearest;
