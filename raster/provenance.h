@@ -13,8 +13,9 @@
 // Implements: the ambiguity classes, the interval storage attached to a rendered texture, and the
 // thread-local state through which the sampler reports interval bounds to programs run in
 // provenance mode. Program outputs are bounded by running the fragment program three times, with
-// the sampler returning the per-channel lower bound, the upper bound, and the oracle value. This is
-// valid because every built-in program is monotone (non-decreasing) in each sampled channel.
+// the sampler returning the per-channel lower bound, the upper bound, and the oracle value, and again
+// on each candidate's bounds where one lookup has several (ShadeProvenance). This is valid because
+// every built-in program is monotone (non-decreasing) in each sampled channel.
 // Does not implement: the tolerances (raster/tolerances.h, each derived in docs/crosscheck.md;
 // rast_provenance.cpp, rast.cpp and sample_interval.cpp apply them) or the comparison (verify/).
 #pragma once
@@ -81,7 +82,14 @@ struct Candidate {
 // The most candidates a pixel keeps. A larger set collapses to its hull (one candidate, no tags),
 // and the pixel is flagged kFallback so reports count it.
 constexpr size_t kMaxCandidates = 16;
-enum PixelFlag : uint8_t { kFallback = 1u << 0 };
+// kLookupForked: a fragment of the pixel took its candidates from a texture lookup's candidates.
+// kLookupFallback: a lookup's candidates were used as their hull (more than kMaxLookupCandidates
+// boxes, or two lookups of one fragment with more than one candidate each); reports count it.
+enum PixelFlag : uint8_t { kFallback = 1u << 0, kLookupForked = 1u << 1, kLookupFallback = 1u << 2 };
+
+// The most candidates one texture lookup keeps (docs/crosscheck.md, "Lookup candidates"): more
+// distinct boxes collapse to their hull and the pixel is flagged kLookupFallback.
+constexpr int kMaxLookupCandidates = 8;
 
 // The interval images of one rendered texture: same format and shape as the texture.
 struct Provenance {
@@ -101,14 +109,30 @@ struct Provenance {
 // What the sampler should return while a program runs in provenance mode.
 enum class SampleBound : uint8_t { Value = 0, Lo = 1, Hi = 2 };
 
+// A lookup in provenance mode has a list of candidates per pixel (its discrete freedoms: level plan,
+// layer, NEAREST texel), each a box. With `candidate` < 0 the sampler returns the hull of the list;
+// with k >= 0 it returns candidate k of a lookup with more than one (the last one when it has fewer),
+// and the single box of any other lookup. The rasterizer re-runs the program per candidate when a
+// pixel has exactly one lookup with more than one candidate (rast_provenance.cpp).
 struct ShadeProvenance {
   bool active = false;
   SampleBound bound = SampleBound::Value;
+  int candidate = -1;
+  uint64_t quadSerial = 0;            // changes per shaded quad (the sampler caches lookups per quad)
   std::array<uint16_t, 4> classes{};  // per quad pixel, ORed in by the sampler
   std::array<bool, 4> dontCare{};     // per quad pixel: an undefined value was used
+  // Per quad pixel, counted by the sampler in the hull run of the lower bound (bound Lo, candidate < 0):
+  std::array<uint8_t, 4> forkingLookups{};   // lookups with more than one candidate
+  std::array<uint8_t, 4> lookupCandidates{};  // the largest such candidate count
+  std::array<bool, 4> lookupFallback{};       // a lookup's candidates collapsed to their hull
   void resetPixels() {
     classes = {};
     dontCare = {};
+    forkingLookups = {};
+    lookupCandidates = {};
+    lookupFallback = {};
+    candidate = -1;
+    ++quadSerial;
   }
 };
 // Thread-local: each rasterizer thread shades its own quads.

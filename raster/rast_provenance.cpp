@@ -12,7 +12,8 @@
 //   candidate; where the stored depth's writer has the incoming fragment's depth-writer signature
 //   the tie is exact (GL's invariance, raster/depth_signature.h) and does not fork.
 // - the program's output box: three runs (lower bound, upper bound, value) with the sampler in
-//   interval mode, widened by the output-rounding tolerance.
+//   interval mode, widened by the output-rounding tolerance; where one lookup of the fragment has
+//   several candidates (LOD level, layer, texel), a pair of runs per candidate, each a written outcome.
 // - BLEND_PRECISION: blending is evaluated at the 16 corners of (src, src alpha, dst, dst alpha) per
 //   destination candidate, then widened by +-2.5 LSB for unorm.
 // The tolerances are in raster/tolerances.h, each derived in docs/crosscheck.md.
@@ -48,11 +49,14 @@ struct FragInterval {
 
 // The fragment interval of attachment `a`, pixel `p`, from the three runs.
 // posTolPx: how far (pixels) GL's sample may sit from the oracle's on the triangle's plane.
-FragInterval fragInterval(const QuadOut (&o)[3], int a, int p, bool uintOut, double posTolPx) {
+// withValue: the value run lies in the interval (false for a lookup candidate other than the oracle's,
+// whose box need not contain the oracle's value; its tolerance still comes from the value run).
+FragInterval fragInterval(const QuadOut (&o)[3], int a, int p, bool uintOut, double posTolPx, bool withValue = true) {
   FragInterval f{};
+  const int runs = withValue ? 3 : 2;
   for (int c = 0; c < 4; ++c) {
     if (uintOut) {
-      const uint32_t v0 = o[0].color[a][p].u[c], v1 = o[1].color[a][p].u[c], v2 = o[2].color[a][p].u[c];
+      const uint32_t v0 = o[0].color[a][p].u[c], v1 = o[1].color[a][p].u[c], v2 = o[runs - 1].color[a][p].u[c];
       f.lo[c] = double(std::min({v0, v1, v2}));
       f.hi[c] = double(std::max({v0, v1, v2}));
       continue;
@@ -62,8 +66,8 @@ FragInterval fragInterval(const QuadOut (&o)[3], int a, int p, bool uintOut, dou
       const float x = o[r].color[a][p].f[c];
       v[r] = std::isnan(x) ? 0.0 : double(x);
     }
-    f.lo[c] = std::min({v[0], v[1], v[2]});
-    f.hi[c] = std::max({v[0], v[1], v[2]});
+    f.lo[c] = std::min({v[0], v[1], v[runs - 1]});
+    f.hi[c] = std::max({v[0], v[1], v[runs - 1]});
     // Output rounding: the value run's quad gradient times the position tolerance, plus float error.
     const QuadOut& val = o[2];
     const double g = std::fabs(double(val.color[a][1].f[c]) - val.color[a][0].f[c]) +
@@ -97,6 +101,13 @@ struct PixelUpdate {
   double zTol;
   uint64_t depthSig;
   uint32_t depthEpoch;
+  // Lookup candidates (docs/crosscheck.md): the candidates of the fragment's one lookup with more than
+  // one (0: none, the three runs bound it), with the program's runs on each one's lower and upper
+  // bound; lookupFallback: lookups were used as their hull.
+  int lookupCount;
+  const QuadOut* lookupLo;
+  const QuadOut* lookupHi;
+  bool lookupFallback;
 };
 
 // The depth a candidate's chain left: its own record in this epoch, else the oracle's stored depth.
@@ -359,6 +370,16 @@ void updatePixel(TextureData& tex, const TargetView& tv, uint32_t layer, int32_t
   std::vector<Candidate>& stored = pv.candidates[tv.level][idx];
   const uint16_t dstCls = cls;
   const FragInterval f = fragInterval(o, a, p, !k.unorm && !k.isFloat, u.posTolPx);
+  // The fragment's candidates: one per candidate of its forking lookup, else its one interval.
+  FragInterval frags[kMaxLookupCandidates];
+  int nf = 0;
+  for (int li = 0; li < u.lookupCount; ++li) {
+    const QuadOut lk[3] = {u.lookupLo[li], u.lookupHi[li], o[2]};
+    frags[nf++] = fragInterval(lk, a, p, !k.unorm && !k.isFloat, u.posTolPx, li == 0);
+  }
+  if (nf == 0) frags[nf++] = f;
+  if (nf > 1) pv.flags[tv.level][idx] |= kLookupForked;
+  if (u.lookupFallback) pv.flags[tv.level][idx] |= kLookupFallback;
 
   // The set before this fragment: the stored candidates, or the one box of the images.
   std::vector<Candidate> before;
@@ -408,11 +429,11 @@ void updatePixel(TextureData& tex, const TargetView& tv, uint32_t layer, int32_t
         if (onChain && oracleOutcomeCov && !u.keepValue) oracleChain = int(after.size());
         addCandidate(k, after, base);
       }
-      if (canWrite) {
+      for (int fi = 0; canWrite && fi < nf; ++fi) {
         Candidate w;
-        writtenBox(k, f, u, blend, base, w, classes);
+        writtenBox(k, frags[fi], u, blend, base, w, classes);
         w.depth = writtenDepth(base.depth, u);
-        if (onChain && oracleOutcomeCov && u.keepValue) oracleChain = int(after.size());
+        if (onChain && oracleOutcomeCov && u.keepValue && fi == 0) oracleChain = int(after.size());
         addCandidate(k, after, w);
       }
     }
@@ -553,6 +574,7 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
   ShadeProvenance& sp = shadeProvenance();
   Quad quad;
   QuadOut outs[3];  // lower bound, upper bound, value
+  QuadOut lookupOuts[2][kMaxLookupCandidates];  // per lookup candidate: lower bound, upper bound
   for (int32_t qy = y0 & ~1; qy <= y1; qy += 2) {
     for (int32_t qx = x0 & ~1; qx <= x1; qx += 2) {
       int64_t e[4][3];
@@ -610,6 +632,21 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
         batch.out = &outs[r];
         ds.program->shadeQuads(batch, ds.ctx);
       }
+      // Lookup candidates (docs/crosscheck.md): where a pixel's fragment made exactly one lookup with
+      // more than one candidate, the program runs again on each candidate's lower and upper bound
+      // (the sampler counted them in the first run). Two or more such lookups keep the hull runs.
+      int lookupRuns = 0;
+      for (int p = 0; p < 4; ++p)
+        if (sp.forkingLookups[size_t(p)] == 1) lookupRuns = std::max(lookupRuns, int(sp.lookupCandidates[size_t(p)]));
+      for (int li = 0; li < lookupRuns; ++li)
+        for (int r = 0; r < 2; ++r) {
+          sp.bound = bounds[r];
+          sp.candidate = li;
+          lookupOuts[r][li].discard = 0;
+          batch.out = &lookupOuts[r][li];
+          ds.program->shadeQuads(batch, ds.ctx);
+        }
+      sp.candidate = -1;
       sp.active = false;
       sp.bound = SampleBound::Value;
 
@@ -635,6 +672,10 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
         u.depthTest = du.depthTest, u.depthWrite = du.depthWrite, u.depthUnbounded = du.depthUnbounded;
         u.func = du.func, u.depthSig = du.depthSig, u.depthEpoch = du.depthEpoch;
         u.z = z[p], u.zStored = zStored[p], u.zTol = tolZ + std::fabs(double(z[p])) * tolerance::kInterpRel;
+        u.lookupCount = sp.forkingLookups[size_t(p)] == 1 ? int(sp.lookupCandidates[size_t(p)]) : 0;
+        u.lookupLo = lookupOuts[0];
+        u.lookupHi = lookupOuts[1];
+        u.lookupFallback = sp.forkingLookups[size_t(p)] > 1 || sp.lookupFallback[size_t(p)];
         // A tie near exactly one edge that is no clipped edge is correlated with the triangle on the
         // other side of that edge (EdgeTag).
         const uint8_t nm = nearMask[p];

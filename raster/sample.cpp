@@ -407,6 +407,44 @@ void sampleN(const TexUnit& u, const Plan& p, int n, const float* s, const float
   }
 }
 
+uint32_t blendedChannels(const TexUnit& u, const Plan& p, float s, float t, uint32_t layer) {
+  const Format fmt = u.tex->desc.format;
+  if (!p.complete || !isUnorm(fmt)) return 0;
+  const uint32_t bpt = texelBytes(fmt);
+  if (layer > p.lastLayer) layer = p.lastLayer;
+  // The taps with a non-zero weight, and whether any weight is fractional (the same taps and weights
+  // as accumulateLevel's).
+  const uint8_t* taps[8];
+  int n = 0;
+  bool fractional = p.levelCount == 2;  // makePlan keeps a second level only with weight in (0, 1)
+  for (int l = 0; l < p.levelCount; ++l) {
+    const LevelRef& L = p.lv[l];
+    const uint8_t* base = L.data + layer * L.layerStride;
+    const float uu = s * L.fw, vv = t * L.fh;
+    if (!p.linear) {
+      const int32_t i = wrapIndex(p.wrapS, nearestIndex(uu), L.w), j = wrapIndex(p.wrapT, nearestIndex(vv), L.h);
+      taps[n++] = texelPtr(p, base, L, i, j, bpt);
+      continue;
+    }
+    const int64_t U = linearFixed(uu), V = linearFixed(vv);
+    const uint32_t a = uint32_t(U & 0xff), b = uint32_t(V & 0xff);
+    int32_t wi0, wi1, wj0, wj1;
+    wrapPair(p.wrapS, U >> 8, L.w, wi0, wi1);
+    wrapPair(p.wrapT, V >> 8, L.h, wj0, wj1);
+    fractional = fractional || a != 0 || b != 0;
+    taps[n++] = texelPtr(p, base, L, wi0, wj0, bpt);
+    if (a != 0) taps[n++] = texelPtr(p, base, L, wi1, wj0, bpt);
+    if (b != 0) taps[n++] = texelPtr(p, base, L, wi0, wj1, bpt);
+    if (a != 0 && b != 0) taps[n++] = texelPtr(p, base, L, wi1, wj1, bpt);
+  }
+  if (!fractional) return 0;
+  uint32_t mask = 0;
+  for (int c = 0; c < channelCount(fmt); ++c)
+    for (int i = 1; i < n; ++i)
+      if (taps[i][c] != taps[0][c]) mask |= 1u << c;
+  return mask;
+}
+
 }  // namespace sample_detail
 
 namespace {

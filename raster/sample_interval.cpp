@@ -9,13 +9,17 @@
 // - texel coordinates: the sample-position shift times the coordinate derivatives, float interpolation
 //   error, and half an 8-bit weight step (tolerance::kSamplePosPx, kInterpRel, kWeightTexel);
 // - array layer: r + 1/2 near an integer (tolerance::kLayer);
-// - unorm filtering precision: +-1 LSB when the lookup blends texels (tolerance::kFilterUnorm).
-// Each alternative is looked up with the exact path's own plan and per-pixel filter (makePlan, sampleN),
-// and the interval starts from the lookup at the oracle's lambda, coordinates and layer.
+// - unorm filtering precision: +-1 LSB on an alternative that blends differing texels with a weight not
+//   in {0, 1} (tolerance::kFilterUnorm, blendedChannels).
+// Each alternative is looked up with the exact path's own plan and per-pixel filter (makePlan, sampleN).
+// The alternatives are grouped by their discrete choice (level plan incl. the c = 1/2 switch, layer,
+// NEAREST texel), giving each pixel's lookup a short list of candidate boxes rather than one hull
+// (docs/crosscheck.md, "Lookup candidates"); the oracle's own lookup is in the first.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <vector>
 
 #include "raster/provenance.h"
 #include "raster/sample.h"
@@ -25,17 +29,49 @@
 namespace tessera::sample_detail {
 namespace {
 
-struct Interval {
+// A box per channel in the lookup's value space.
+struct Box {
   float lo[4], hi[4];
-  void init(const float v[4]) {
-    for (int c = 0; c < 4; ++c) lo[c] = hi[c] = v[c];
+  void init(const float l[4], const float h[4]) {
+    for (int c = 0; c < 4; ++c) lo[c] = l[c], hi[c] = h[c];
   }
-  void add(const float v[4]) {
+  void add(const float l[4], const float h[4]) {
     for (int c = 0; c < 4; ++c) {
-      if (v[c] < lo[c] || std::isnan(lo[c])) lo[c] = v[c];
-      if (v[c] > hi[c] || std::isnan(hi[c])) hi[c] = v[c];
+      if (l[c] < lo[c] || std::isnan(lo[c])) lo[c] = l[c];
+      if (h[c] > hi[c] || std::isnan(hi[c])) hi[c] = h[c];
     }
   }
+  bool inside(const Box& o) const {  // within o (NaN: never)
+    for (int c = 0; c < 4; ++c)
+      if (!(lo[c] >= o.lo[c] && hi[c] <= o.hi[c])) return false;
+    return true;
+  }
+  bool same(const Box& o) const { return std::memcmp(this, &o, sizeof *this) == 0; }
+};
+
+// The discrete choice that a group of alternatives shares: the level plan (its levels by size, the
+// texel filter), the layer, and for a NEAREST texel filter the coordinate alternative (which texel).
+// Alternatives within a group differ only continuously: the level weight of a pair over lambda, and
+// the LINEAR weights over the coordinate tolerance.
+struct GroupKey {
+  int32_t w0, h0, w1, h1;
+  int32_t levels;
+  bool linear;
+  uint32_t layer;
+  int32_t a, b;  // coordinate alternative per axis for NEAREST, -1 for LINEAR
+  bool operator==(const GroupKey&) const = default;
+};
+struct Group {
+  GroupKey key;
+  Box box;
+};
+
+// All candidates of one pixel's lookup (the hull is what candidate < 0 returns).
+struct LookupSet {
+  int n = 0;
+  bool fallback = false;
+  Box c[kMaxLookupCandidates];
+  Box hull;
 };
 
 inline bool sameValue(const float a[4], const float b[4]) { return std::memcmp(a, b, 4 * sizeof(float)) == 0; }
@@ -56,10 +92,15 @@ int coordCandidates(float x, double tol, const Plan& p, bool horizontal, float o
   return n;
 }
 
-// Bounds one pixel's lookup over the legal alternatives. `der` = {dsdx, dtdx, dsdy, dtdy} per
-// derivative choice (0: the oracle's, 1: the alternative), in normalized coordinates.
-void intervalPixel(const TexUnit& u, float s, float t, float r, bool array, const double der[2][4], int derCount,
-                   float bias, uint16_t& classes, Interval& iv) {
+// One pass over the legal alternatives of one pixel's lookup, reading the image that
+// shadeProvenance().bound selects: the alternatives grouped by their discrete choice (GroupKey), each
+// group's box the hull of its alternatives, each alternative widened by the filter precision in the
+// channels where its own filter rounds (blendedChannels). Group 0 holds the oracle's lookup. `der` =
+// {dsdx, dtdx, dsdy, dtdy} per derivative choice (0: the oracle's, 1: the alternative), in normalized
+// coordinates.
+void intervalPass(const TexUnit& u, float s, float t, float r, bool array, const double der[2][4], int derCount,
+                  float bias, uint16_t& classes, std::vector<Group>& groups) {
+  groups.clear();
   const TextureDesc& d = u.tex->desc;
   const double W = double(d.width), H = double(d.height);
   int32_t lamOracle = 0, lamLo = 0, lamHi = 0;
@@ -82,17 +123,20 @@ void intervalPixel(const TexUnit& u, float s, float t, float r, bool array, cons
   if (derCount > 1 && exact[1] != exact[0]) classes |= kHelperDeriv;
 
   // Lambda candidates: the ends, the oracle's, and both sides of every switch point inside
-  // (integers: level pairs and the mag/min switch at c = 0; k + 1/2: nearest-mip rounding).
-  int32_t lam[18];
+  // (integers: level pairs and the mag/min switch at c = 0; k + 1/2: nearest-mip rounding). A level
+  // pair (k - 1, k) spans lambda in (k - 1, k): its group is looked up at both ends of its part of the
+  // range, so k - 1/256 (the weight 255/256 of level k) is a switch point too.
+  constexpr int kMaxLam = 32;
+  int32_t lam[kMaxLam];
   int nl = 0;
   lam[nl++] = lamOracle;
   lam[nl++] = lamLo;
   lam[nl++] = lamHi;
   const int32_t kMaxK = int32_t(d.levels) + 1;
-  for (int32_t k = 0; k <= kMaxK && nl < 16; ++k)
-    for (int32_t off : {0, 1, 128, 129}) {
+  for (int32_t k = 0; k <= kMaxK; ++k)
+    for (int32_t off : {-1, 0, 1, 128, 129}) {
       const int32_t v = k * 256 + off;
-      if (v > lamLo && v < lamHi && nl < 18) lam[nl++] = v;
+      if (v > lamLo && v < lamHi && nl < kMaxLam) lam[nl++] = v;
     }
 
   // Layer candidates.
@@ -109,12 +153,40 @@ void intervalPixel(const TexUnit& u, float s, float t, float r, bool array, cons
   const double tolT = (std::fabs(der[0][1]) + std::fabs(der[0][3])) * tolerance::kSamplePosPx +
                       std::fabs(double(t)) * tolerance::kInterpRel;
 
+  const bool unorm = isUnorm(d.format);
+  const int channels = channelCount(d.format);
+  // Adds one alternative to its group, widened by FILTER_PRECISION where its filter rounds.
+  auto addSample = [&](const Plan& p, uint32_t layer, int32_t a, int32_t b, float sc, float tc, const float v[4]) {
+    float l[4], h[4];
+    const uint32_t blended = unorm ? blendedChannels(u, p, sc, tc, layer) : 0u;
+    for (int c = 0; c < 4; ++c) {
+      l[c] = h[c] = v[c];
+      if (c < channels && (blended >> c & 1)) {
+        l[c] = std::max(0.0f, float(double(v[c]) - tolerance::kFilterUnorm));
+        h[c] = std::min(1.0f, float(double(v[c]) + tolerance::kFilterUnorm));
+      }
+    }
+    if (blended) classes |= kFilterPrecision;
+    GroupKey key{};
+    key.w0 = p.lv[0].w, key.h0 = p.lv[0].h;
+    key.w1 = p.levelCount == 2 ? p.lv[1].w : 0, key.h1 = p.levelCount == 2 ? p.lv[1].h : 0;
+    key.levels = p.levelCount, key.linear = p.linear, key.layer = layer;
+    key.a = p.linear ? -1 : a, key.b = p.linear ? -1 : b;
+    for (Group& g : groups)
+      if (g.key == key) {
+        g.box.add(l, h);
+        return;
+      }
+    groups.push_back({key, {}});
+    groups.back().box.init(l, h);
+  };
+
   float nominal[4];
   {
     const Plan p = makePlan(u, lamOracle);
     sampleN(u, p, 1, &s, &t, &layerOracle, reinterpret_cast<float(*)[4]>(nominal));
-    iv.init(nominal);
-    if (isUnorm(d.format) && (p.linear || p.levelCount == 2)) classes |= kFilterPrecision;
+    // The nominal coordinates are the last alternative of each axis (index 2 of a NEAREST plan).
+    addSample(p, layerOracle, 2, 2, s, t, nominal);
     // A texture rendered in provenance mode is read through its lower or upper interval image
     // (sample.cpp); where that differs from its values, the texels' own freedoms reach this lookup.
     ShadeProvenance& sp = shadeProvenance();
@@ -151,8 +223,8 @@ void intervalPixel(const TexUnit& u, float s, float t, float r, bool array, cons
         for (int b = 0; b < nt; ++b) {
           float v[1][4];
           sampleN(u, p, 1, &sc[a], &tc[b], &layer, v);
+          addSample(p, layer, a, b, sc[a], tc[b], v[0]);
           if (sameValue(v[0], nominal)) continue;
-          iv.add(v[0]);
           // A class names the freedom that alone changes the value: the LOD with the nominal
           // coordinates and layer, or the coordinates with the oracle's LOD and layer. Combinations
           // only widen the interval.
@@ -161,35 +233,151 @@ void intervalPixel(const TexUnit& u, float s, float t, float r, bool array, cons
           if (!alt && lam[li] == lamOracle && !nominalCoords && nominalLayer) classes |= kSubtexelNearHalf;
         }
   }
-  if (classes & kFilterPrecision) {
-    for (int c = 0; c < channelCount(d.format); ++c) {
-      iv.lo[c] = std::max(0.0f, float(double(iv.lo[c]) - tolerance::kFilterUnorm));
-      iv.hi[c] = std::min(1.0f, float(double(iv.hi[c]) + tolerance::kFilterUnorm));
+}
+
+// The candidates of one pixel's lookup from its lower-image and upper-image passes (the same groups
+// in the same order): duplicates and boxes inside another box are dropped (the union accepts the
+// same values, and a monotone program maps a box inside another inside its image), the oracle's
+// group stays first, and past kMaxLookupCandidates the hull is the one candidate.
+void buildSet(const std::vector<Group>& lo, const std::vector<Group>& hi, LookupSet& out) {
+  const size_t n = std::min(lo.size(), hi.size());
+  for (size_t i = 0; i < n; ++i) {
+    if (i == 0) {
+      out.hull.init(lo[0].box.lo, hi[0].box.hi);
+    } else {
+      out.hull.add(lo[i].box.lo, hi[i].box.hi);
     }
+  }
+  constexpr size_t kMaxGroups = 128;
+  bool overflow = lo.size() != hi.size() || n > kMaxGroups || n == 0;
+  const size_t m = overflow ? 0 : n;
+  Box boxes[kMaxGroups];
+  for (size_t i = 0; i < m; ++i) boxes[i].init(lo[i].box.lo, hi[i].box.hi);
+  bool keep[kMaxGroups];
+  for (size_t i = 0; i < m; ++i) {
+    keep[i] = true;
+    for (size_t j = 0; j < m && keep[i]; ++j)
+      if (j != i && boxes[i].inside(boxes[j]) && (!boxes[i].same(boxes[j]) || j < i)) keep[i] = false;
+  }
+  out.n = 0;
+  out.fallback = false;
+  if (m > 0 && !keep[0]) {
+    // The oracle's box lies inside another: that one goes first.
+    for (size_t j = 1; j < m; ++j)
+      if (keep[j] && boxes[0].inside(boxes[j])) {
+        out.c[out.n++] = boxes[j];
+        keep[j] = false;
+        break;
+      }
+  }
+  for (size_t i = 0; i < m; ++i) {
+    if (!keep[i]) continue;
+    if (out.n == kMaxLookupCandidates) {
+      overflow = true;
+      break;
+    }
+    out.c[out.n++] = boxes[i];
+  }
+  if (overflow || out.n == 0) {
+    out.n = 1;
+    out.fallback = true;
+    out.c[0] = out.hull;
   }
 }
 
+// The candidates of one pixel's lookup. A rendered texture (kInputInterval) is read through its
+// lower image for the lower bounds and its upper image for the upper ones; any other texture once.
+void lookupSet(const TexUnit& u, float s, float t, float r, bool array, const double der[2][4], int derCount,
+               float bias, uint16_t& classes, LookupSet& out) {
+  thread_local std::vector<Group> lo, hi;
+  ShadeProvenance& sp = shadeProvenance();
+  if (!u.tex->prov) {
+    intervalPass(u, s, t, r, array, der, derCount, bias, classes, lo);
+    buildSet(lo, lo, out);
+    return;
+  }
+  const SampleBound b = sp.bound;
+  sp.bound = SampleBound::Lo;
+  intervalPass(u, s, t, r, array, der, derCount, bias, classes, lo);
+  sp.bound = SampleBound::Hi;
+  intervalPass(u, s, t, r, array, der, derCount, bias, classes, hi);
+  sp.bound = b;
+  buildSet(lo, hi, out);
+}
+
+// The lookups of the current quad, kept while the program runs again for the other bounds and
+// candidates (the same inputs give the same sets).
+struct CachedLookup {
+  const TextureData* tex;
+  SamplerQ sampler;
+  float s[4], t[4], r[4], bias;
+  bool hasR, hasGrad;
+  double grad[4];
+  LookupSet sets[4];
+  uint16_t classes[4];
+};
+
 }  // namespace
 
-// Quad lookup in provenance mode: each pixel's interval; out = lower or upper bound per pixel.
+// Quad lookup in provenance mode: each pixel's candidate set; out = the lower or upper bound of the
+// hull or of the candidate that shadeProvenance().candidate selects.
 void sampleQuadInterval(const TexUnit& u, const float s[4], const float t[4], const float* r, float bias,
                         const double* grad, float out[4][4]) {
   ShadeProvenance& pv = shadeProvenance();
-  for (int p = 0; p < 4; ++p) {
-    double der[2][4];
-    // 0: coarse (the oracle's) or the explicit gradient; 1: fine, per row / column of the quad.
-    if (grad) {
-      for (int k = 0; k < 4; ++k) der[0][k] = grad[k];
-    } else {
-      der[0][0] = double(s[1]) - s[0], der[0][1] = double(t[1]) - t[0];
-      der[0][2] = double(s[2]) - s[0], der[0][3] = double(t[2]) - t[0];
+  thread_local std::vector<CachedLookup> cache;
+  thread_local uint64_t cacheSerial = ~uint64_t(0);
+  if (cacheSerial != pv.quadSerial) cache.clear(), cacheSerial = pv.quadSerial;
+  CachedLookup key{};
+  key.tex = u.tex;
+  key.sampler = u.sampler;
+  std::memcpy(key.s, s, sizeof key.s);
+  std::memcpy(key.t, t, sizeof key.t);
+  if (r) std::memcpy(key.r, r, sizeof key.r);
+  key.bias = bias;
+  key.hasR = r != nullptr;
+  key.hasGrad = grad != nullptr;
+  if (grad) std::memcpy(key.grad, grad, sizeof key.grad);
+  const CachedLookup* hit = nullptr;
+  for (const CachedLookup& c : cache)
+    if (c.tex == key.tex && std::memcmp(&c.sampler, &key.sampler, sizeof key.sampler) == 0 &&
+        std::memcmp(c.s, key.s, sizeof key.s) == 0 && std::memcmp(c.t, key.t, sizeof key.t) == 0 &&
+        std::memcmp(c.r, key.r, sizeof key.r) == 0 && c.bias == key.bias && c.hasR == key.hasR &&
+        c.hasGrad == key.hasGrad && std::memcmp(c.grad, key.grad, sizeof key.grad) == 0) {
+      hit = &c;
+      break;
     }
-    const int row = (p >> 1) * 2, col = p & 1;
-    der[1][0] = double(s[row + 1]) - s[row], der[1][1] = double(t[row + 1]) - t[row];
-    der[1][2] = double(s[2 + col]) - s[col], der[1][3] = double(t[2 + col]) - t[col];
-    Interval iv;
-    intervalPixel(u, s[p], t[p], r ? r[p] : 0.0f, r != nullptr, der, 2, bias, pv.classes[size_t(p)], iv);
-    for (int c = 0; c < 4; ++c) out[p][c] = pv.bound == SampleBound::Lo ? iv.lo[c] : iv.hi[c];
+  if (!hit) {
+    for (int p = 0; p < 4; ++p) {
+      double der[2][4];
+      // 0: coarse (the oracle's) or the explicit gradient; 1: fine, per row / column of the quad.
+      if (grad) {
+        for (int k = 0; k < 4; ++k) der[0][k] = grad[k];
+      } else {
+        der[0][0] = double(s[1]) - s[0], der[0][1] = double(t[1]) - t[0];
+        der[0][2] = double(s[2]) - s[0], der[0][3] = double(t[2]) - t[0];
+      }
+      const int row = (p >> 1) * 2, col = p & 1;
+      der[1][0] = double(s[row + 1]) - s[row], der[1][1] = double(t[row + 1]) - t[row];
+      der[1][2] = double(s[2 + col]) - s[col], der[1][3] = double(t[2 + col]) - t[col];
+      key.classes[p] = 0;
+      lookupSet(u, s[p], t[p], r ? r[p] : 0.0f, r != nullptr, der, 2, bias, key.classes[p], key.sets[p]);
+    }
+    cache.push_back(key);
+    hit = &cache.back();
+  }
+  const bool counting = pv.bound == SampleBound::Lo && pv.candidate < 0;
+  for (int p = 0; p < 4; ++p) {
+    const LookupSet& set = hit->sets[p];
+    pv.classes[size_t(p)] |= hit->classes[p];
+    if (counting) {
+      if (set.n > 1) {
+        ++pv.forkingLookups[size_t(p)];
+        pv.lookupCandidates[size_t(p)] = std::max(pv.lookupCandidates[size_t(p)], uint8_t(set.n));
+      }
+      if (set.fallback) pv.lookupFallback[size_t(p)] = true;
+    }
+    const Box& box = pv.candidate < 0 ? set.hull : set.c[std::min(pv.candidate, set.n - 1)];
+    for (int c = 0; c < 4; ++c) out[p][c] = pv.bound == SampleBound::Lo ? box.lo[c] : box.hi[c];
   }
 }
 

@@ -149,12 +149,14 @@ void writeCrosscheckReport(const CrosscheckResult& result, const std::string& di
         "<p><img src='{p}histogram.png' style='width:auto'><br>error histogram (|Δ| per pixel, largest channel, log scale)</p>"
         "<table><tr><th>class</th><th>pixels</th><th>explained differences</th><th>fraction</th>"
         "<th>mean width</th><th>max width</th><th>mean candidates</th><th>max candidates</th><th>fallbacks</th></tr>"
-        "{rows}</table><p>candidate sets that fell back to their hull: {fallbacks}</p>",
+        "{rows}</table><p>candidate sets that fell back to their hull: {fallbacks} · pixels with lookup candidates: "
+        "{lforked} · lookups used as their hull: {lfallbacks}</p>",
         fmt::arg("name", v.name), fmt::arg("fmt", formatName(j.format)), fmt::arg("w", j.width), fmt::arg("h", j.height),
         fmt::arg("verdict", j.passed() ? "PASS" : "FAIL"), fmt::arg("exact", j.exactPercent()),
         fmt::arg("classed", j.classed), fmt::arg("expl", j.explained), fmt::arg("unexpl", j.unexplained),
         fmt::arg("maxd", jj["max_abs_diff"].dump()), fmt::arg("psnr", jj["psnr_db"].dump()), fmt::arg("k", k),
-        fmt::arg("p", p), fmt::arg("rows", rows), fmt::arg("fallbacks", j.fallbacks));
+        fmt::arg("p", p), fmt::arg("rows", rows), fmt::arg("fallbacks", j.fallbacks),
+        fmt::arg("lforked", j.lookupForked), fmt::arg("lfallbacks", j.lookupFallbacks));
     if (n <= (1u << 20)) {
       std::string classes = "[";
       for (size_t i = 0; i < n; ++i) classes += (i ? "," : "") + std::to_string(j.classMap[i]);

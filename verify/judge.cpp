@@ -78,6 +78,9 @@ Judgement judge(const TextureData& tex, uint32_t level, uint32_t layer, const st
       j.classMap[i] = classes;
       if (classes) ++j.classed;
       if (fallback) ++j.fallbacks;
+      const bool lookupFallback = flags[si] & kLookupFallback;
+      if (lookupFallback) ++j.lookupFallbacks;
+      if (flags[si] & kLookupForked) ++j.lookupForked;
       if (set.size() > 1) ++j.multiCandidate;
       for (int b = 0; b < kClassCount; ++b)
         if (classes >> b & 1) {
@@ -94,6 +97,7 @@ Judgement judge(const TextureData& tex, uint32_t level, uint32_t layer, const st
           st.candidateSum += n;
           st.candidateMax = std::max(st.candidateMax, n);
           if (fallback) ++st.fallbacks;
+          if (lookupFallback) ++st.lookupFallbacks;
         }
       const uint8_t* pv = &val[i * bpt];
       const uint8_t* po = &other[i * bpt];
@@ -168,7 +172,8 @@ nlohmann::json toJson(const Judgement& j) {
         {"max_width", maxW},
         {"mean_candidates", st.pixels ? double(st.candidateSum) / double(st.pixels) : 0.0},
         {"max_candidates", st.candidateMax},
-        {"fallbacks", st.fallbacks}};
+        {"fallbacks", st.fallbacks},
+        {"lookup_fallbacks", st.lookupFallbacks}};
   }
   nlohmann::json first = nlohmann::json::array();
   for (const PixelRecord& r : j.firstUnexplained) {
@@ -196,6 +201,9 @@ nlohmann::json toJson(const Judgement& j) {
           {"candidate_fallbacks", j.fallbacks},
           {"multi_candidate_pixels", j.multiCandidate},
           {"max_candidates", kMaxCandidates},
+          {"lookup_forked_pixels", j.lookupForked},
+          {"lookup_fallbacks", j.lookupFallbacks},
+          {"max_lookup_candidates", kMaxLookupCandidates},
           {"max_abs_diff", std::vector<double>(j.maxAbsDiff.begin(), j.maxAbsDiff.begin() + j.channels)},
           {"histogram_bins", {"0", "1", "2", "3-4", "5-8", "9-16", "17-32", "33-64", "65-128", "129+"}},
           {"histogram", j.histogram},

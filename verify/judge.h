@@ -33,7 +33,8 @@ struct ClassStats {
   std::array<double, 4> widthSum{}, widthMax{};  // hi - lo of the hull (LSBs for unorm), per channel
   uint64_t candidateSum = 0;                     // candidates per pixel (1 = the hull alone)
   uint64_t candidateMax = 0;
-  uint64_t fallbacks = 0;  // pixels whose set outgrew kMaxCandidates and fell back to the hull
+  uint64_t fallbacks = 0;        // pixels whose set outgrew kMaxCandidates and fell back to the hull
+  uint64_t lookupFallbacks = 0;  // pixels whose lookups were used as their hull (kLookupFallback)
 };
 
 struct Judgement {
@@ -47,8 +48,10 @@ struct Judgement {
   std::array<uint64_t, kClassCount> classPixels{};     // pixels carrying each class
   std::array<uint64_t, kClassCount> classExplained{};  // explained pixels carrying each class
   std::array<ClassStats, kClassCount> classStats{};
-  uint64_t fallbacks = 0;       // pixels whose candidate set fell back to its hull (kFallback)
-  uint64_t multiCandidate = 0;  // pixels with two or more candidates
+  uint64_t fallbacks = 0;        // pixels whose candidate set fell back to its hull (kFallback)
+  uint64_t multiCandidate = 0;   // pixels with two or more candidates
+  uint64_t lookupForked = 0;     // pixels whose candidates came from a lookup's candidates (kLookupForked)
+  uint64_t lookupFallbacks = 0;  // pixels whose lookups were used as their hull (kLookupFallback)
   std::array<double, 4> maxAbsDiff{};                  // LSBs for unorm, value units otherwise
   std::array<uint64_t, 10> histogram{};  // same bins as image_compare.h kHistogramBins  // |delta| in LSB: 0, 1, 2, 3-4, 5-8, 9-16, 17-32, 33-64, 65-128, 129+
   double mse = 0.0;                      // mean squared error over channels, in LSB^2 for unorm

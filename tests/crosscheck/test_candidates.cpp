@@ -74,6 +74,39 @@ CommandList whiteTriangle() {
   cl.drawIndexed(0, n);
   return cl;
 }
+
+// A 16 x 16 frame filled by one "textured" quad over a 16 x 16 texture with 5 levels: level 0 flat black,
+// level 1 flat white, the others grey; NEAREST_MIPMAP_NEAREST, mag NEAREST. s runs from 0 to 2^0.47
+// across the quad and t is constant, so every legal rho is |du/dx| = 2^0.47 texels per pixel and lambda =
+// 0.47: the oracle takes level 0 (lambda <= 1/2), and with the 1/16 LOD tolerance GL may take level 1.
+CommandList twoLevelFrame() {
+  CommandList cl;
+  scenes::beginFrame(cl, 16, 16, false, {0, 0, 0, 1});
+  TextureDesc d;
+  d.width = d.height = 16;
+  d.levels = 5;
+  const ResourceId tex = cl.createTexture(d);
+  for (uint32_t l = 0; l < d.levels; ++l) {
+    const uint8_t v = l == 0 ? 0 : (l == 1 ? 255 : 100);
+    const uint32_t size = 16u >> l;
+    cl.uploadTexture(tex, l, 0, scenes::checker(size, size, size, {v, v, v, 255}, {v, v, v, 255}).rgba);
+  }
+  scenes::Mesh m;
+  const float r = 1.385109f;  // 2^0.47
+  m.quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, {0, 0.5f, 0, 0}, {r, 0.5f, 0, 0}, {r, 0.5f, 0, 0},
+         {0, 0.5f, 0, 0});
+  const uint32_t n = scenes::bindMesh(cl, m);
+  cl.useProgram(cl.createProgram("textured"));
+  scenes::setMatrix(cl, 0, glm::mat4(1.0f));
+  scenes::setTexturedDefaults(cl);
+  cl.bindTexture(0, tex);
+  SamplerState s;
+  s.minFilter = Filter::NearestMipmapNearest;
+  s.magFilter = Filter::Nearest;
+  cl.bindSampler(0, cl.createSampler(s));
+  cl.drawIndexed(0, n);
+  return cl;
+}
 }  // namespace
 
 TEST(Candidates, ADifferingPixelWithoutAClassIsUnexplainedEvenInsideAWideInterval) {
@@ -185,5 +218,37 @@ TEST(Candidates, TheReportCountsClassesWidthsAndCandidateSetSizes) {
   EXPECT_EQ(edge["max_candidates"].get<uint64_t>(), 2u);
   EXPECT_DOUBLE_EQ(edge["mean_candidates"].get<double>(), 2.0);
   EXPECT_EQ(edge["fallbacks"].get<uint64_t>(), 0u);
+  EXPECT_EQ(js["candidate_fallbacks"].get<uint64_t>(), 0u);
+}
+
+TEST(Candidates, APixelBetweenTwoLegalLodLevelsAcceptsEitherLevelButNoValueBetweenThem) {
+  const Rendered r = render(twoLevelFrame());
+  for (size_t i = 0; i < r.w * r.h; ++i) {
+    ASSERT_EQ(r.pixels[i * 4], 0) << "the oracle takes level 0 (black): pixel " << i;
+    ASSERT_NE(classesOf(r, i) & kLodNearSwitch, 0) << "pixel " << i;
+    // Level 0 (0), level 1 (255), and values between that only the hull of the two would allow.
+    for (uint8_t v : {uint8_t(0), uint8_t(255), uint8_t(1), uint8_t(128), uint8_t(254)}) {
+      auto other = r.pixels;
+      for (int c = 0; c < 3; ++c) other[i * 4 + c] = v;
+      const bool legal = v == 0 || v == 255;
+      EXPECT_EQ(judgeOf(r, other).unexplained, legal ? 0u : 1u) << "pixel " << i << " value " << int(v);
+    }
+  }
+  const nlohmann::json js = verify::toJson(judgeOf(r, r.pixels));
+  EXPECT_EQ(js["lookup_forked_pixels"].get<uint64_t>(), 16u * 16u);
+  EXPECT_EQ(js["lookup_fallbacks"].get<uint64_t>(), 0u);
+  EXPECT_GE(js["per_class"]["LOD_NEAR_SWITCH"]["max_candidates"].get<uint64_t>(), 2u);
+}
+
+TEST(Candidates, APixelWhoseLookupsFellBackToTheirHullIsCountedInTheReport) {
+  // rast_provenance.cpp flags kLookupFallback where a fragment had two lookups with several candidates
+  // (or a lookup with more than kMaxLookupCandidates); the report counts such pixels per image and per
+  // class, as it counts kFallback.
+  Rendered r = render(twoLevelFrame());
+  r.tex->prov->flags[r.img.level][storeIndex(r, 5)] |= kLookupFallback;
+  r.tex->prov->flags[r.img.level][storeIndex(r, 9)] |= kLookupFallback;
+  const nlohmann::json js = verify::toJson(judgeOf(r, r.pixels));
+  EXPECT_EQ(js["lookup_fallbacks"].get<uint64_t>(), 2u);
+  EXPECT_EQ(js["per_class"]["LOD_NEAR_SWITCH"]["lookup_fallbacks"].get<uint64_t>(), 2u);
   EXPECT_EQ(js["candidate_fallbacks"].get<uint64_t>(), 0u);
 }

@@ -16,6 +16,8 @@
 #include <cstring>
 
 #include "raster/provenance.h"
+#include "raster/sample.h"
+#include "raster/texture.h"
 #include "tests/raster/render_helpers.h"
 #include "tools/scenes/builder.h"
 #include "tools/scenes/scenes.h"
@@ -507,4 +509,116 @@ TEST(ProvenanceClasses, TheHalfSwitchPointIsALegalAlternativeOnlyForMagLinearWit
   // The texel coordinate 1.25 (x + 1/2) - 1/2 has the fraction 1/8, 3/8, 5/8 or 7/8: LINEAR moves the
   // nearest texel's 0 or 255 by 1/8 or 3/8 of 255 (32 or 96) at every pixel.
   EXPECT_EQ(grey, 16 * 16);
+}
+
+namespace {
+// A 16 x 16 frame filled by one "textured" quad over a 16 x 16 texture, LINEAR, CLAMP_TO_EDGE: texel
+// columns 0-7 black, 8-15 white, every row alike. s and t run from 0 to 1 across the quad, so pixel
+// (x, y) looks up the exact texel centre (x + 1/2, y + 1/2): weights 0 and 1 (lambda = 0, LINEAR for
+// magnification and minification alike).
+CommandList texelCentreFrame() {
+  CommandList cl;
+  RenderTarget t;
+  t.color[0] = createTarget(cl, Format::RGBA8, 16, 16);
+  cl.setRenderTarget(t);
+  cl.setViewport({0, 0, 16, 16});
+  cl.clearColor(0, {0, 0, 0, 0});
+  RgbaImage img;
+  img.width = img.height = 16;
+  img.rgba.resize(16 * 16 * 4);
+  for (uint32_t y = 0; y < 16; ++y)
+    for (uint32_t x = 0; x < 16; ++x)
+      img.set(x, y, x < 8 ? std::array<uint8_t, 4>{0, 0, 0, 255} : std::array<uint8_t, 4>{255, 255, 255, 255});
+  cl.bindTexture(0, uploadTexture(cl, img, false));
+  SamplerState s;
+  s.minFilter = Filter::Linear;
+  s.magFilter = Filter::Linear;
+  s.wrapS = s.wrapT = Wrap::ClampToEdge;
+  cl.bindSampler(0, cl.createSampler(s));
+  Mesh m;
+  m.quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, {0, 0, 0, 0}, {1, 0, 0, 0}, {1, 1, 0, 0}, {0, 1, 0, 0});
+  const uint32_t n = bindMesh(cl, m);
+  cl.useProgram(cl.createProgram("textured"));
+  setMatrix(cl, 0, glm::mat4(1.0f));
+  setTexturedDefaults(cl);
+  cl.drawIndexed(0, n);
+  return cl;
+}
+}  // namespace
+
+TEST(ProvenanceClasses, ALinearLookupAtATexelCentreGetsNoFilterPrecisionWideningWhereItsTexelsAgree) {
+  // FILTER_PRECISION (docs/crosscheck.md) bounds the rounding of a filter that blends different
+  // texels with weights not in {0, 1}. At a texel centre the oracle's weights are 0 and 1; the
+  // coordinate tolerance (1/128 px of 1/16 texel per pixel, plus 1/512 texel) reaches weights of a few
+  // 256ths towards the neighbours, which changes nothing while the neighbours hold the same value.
+  // Columns 1-6 and 9-14: every texel in reach agrees, so the pixel is exact, without a class (before,
+  // each LINEAR lookup was widened by 1 LSB: [0, 1] and [254, 255]). Columns 7 and 8 reach the other
+  // colour: the blended alternatives are widened, by 1 LSB beyond the blend itself.
+  const ProvImage p = renderProvenance(texelCentreFrame());
+  for (int y = 1; y < 15; ++y)
+    for (int x = 0; x < 16; ++x) {
+      const uint8_t v = x < 8 ? 0 : 255;
+      ASSERT_EQ(p.val(x, y, 0), v) << x << "," << y;
+      if ((x >= 1 && x <= 6) || (x >= 9 && x <= 14)) {
+        EXPECT_EQ(p.classes(x, y) & kFilterPrecision, 0) << x << "," << y;
+        EXPECT_TRUE(p.exact(x, y)) << x << "," << y << ": " << int(p.low(x, y)) << ".." << int(p.high(x, y));
+      } else if (x == 7 || x == 8) {
+        EXPECT_NE(p.classes(x, y) & kFilterPrecision, 0) << x << "," << y;
+        // A weight of at most 3/256 on the other colour moves the value by at most 3 LSB (255 * 3 / 256
+        // = 2.99), plus the 1 LSB of FILTER_PRECISION.
+        const int reach = x == 7 ? p.high(x, y) : 255 - p.low(x, y);
+        EXPECT_GE(reach, 2) << x << "," << y;
+        EXPECT_LE(reach, 4) << x << "," << y;
+      }
+    }
+}
+
+TEST(ProvenanceLookups, TwoLookupsWithSeveralCandidatesInOneFragmentAreCountedForTheHullFallback) {
+  // An R8 8 x 8 texture, NEAREST_MIPMAP_NEAREST: level 0 flat 0, level 1 flat 255, the rest 100. A quad
+  // with ds/dx = 2^0.47 / 8 (t constant) has lambda = 0.47: level 0 for the oracle, level 1 legal too
+  // (1/16 LOD tolerance), so each lookup has two candidates, {0} and {255}. The sampler counts, in the
+  // lower-bound hull run, how many lookups of each pixel had several candidates; with two, the
+  // rasterizer keeps the hull runs and flags the pixel kLookupFallback (rast_provenance.cpp).
+  TextureDesc d;
+  d.kind = TextureKind::Tex2D;
+  d.format = Format::R8;
+  d.width = d.height = 8;
+  d.levels = 4;
+  TextureData tex(d);
+  for (uint32_t l = 0; l < 4; ++l)
+    std::fill(tex.levels[l].begin(), tex.levels[l].end(), uint8_t(l == 0 ? 0 : (l == 1 ? 255 : 100)));
+  SamplerState ss;
+  ss.minFilter = Filter::NearestMipmapNearest;
+  ss.magFilter = Filter::Nearest;
+  TexUnit u;
+  u.tex = &tex;
+  u.sampler = SamplerQ::from(ss);
+  const float k = 1.385109f / 8.0f;  // 2^0.47 texels per pixel
+  const float s[4] = {0.3f, 0.3f + k, 0.3f, 0.3f + k}, t[4] = {0.5f, 0.5f, 0.5f, 0.5f};
+  ShadeProvenance& sp = shadeProvenance();
+  sp.active = true;
+  sp.resetPixels();
+  float out[4][4];
+  sp.bound = SampleBound::Lo;
+  sampleQuad2D(u, s, t, 0.0f, out);  // one lookup
+  for (int p = 0; p < 4; ++p) {
+    EXPECT_EQ(sp.forkingLookups[size_t(p)], 1) << p;
+    EXPECT_EQ(sp.lookupCandidates[size_t(p)], 2) << p;
+    EXPECT_EQ(out[p][0], 0.0f) << "the hull's lower bound: level 0";
+  }
+  sampleQuad2D(u, s, t, 0.0f, out);  // a second one in the same fragment
+  for (int p = 0; p < 4; ++p) EXPECT_EQ(sp.forkingLookups[size_t(p)], 2) << p;
+  // The candidates themselves: candidate 1 is level 1 in both bounds, candidate 0 the oracle's level 0.
+  sp.candidate = 1;
+  sampleQuad2D(u, s, t, 0.0f, out);
+  for (int p = 0; p < 4; ++p) EXPECT_EQ(out[p][0], 1.0f) << p;
+  sp.candidate = 0;
+  sp.bound = SampleBound::Hi;
+  sampleQuad2D(u, s, t, 0.0f, out);
+  for (int p = 0; p < 4; ++p) EXPECT_EQ(out[p][0], 0.0f) << p;
+  // Counting happens only in the lower-bound hull run.
+  for (int p = 0; p < 4; ++p) EXPECT_EQ(sp.forkingLookups[size_t(p)], 2) << p;
+  sp.resetPixels();
+  sp.active = false;
+  sp.bound = SampleBound::Value;
 }
