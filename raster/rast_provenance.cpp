@@ -679,8 +679,10 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
         // A tie near exactly one edge that is no clipped edge is correlated with the triangle on the
         // other side of that edge (EdgeTag).
         const uint8_t nm = nearMask[p];
-        u.hasEdge = u.coverTie && std::popcount(uint32_t(nm)) == 1 && t.edgeKind[std::countr_zero(uint32_t(nm))] == kEdgeOriginal;
-        if (u.hasEdge) u.edge = edgeTags[std::countr_zero(uint32_t(nm))];
+        // nm has a bit per edge (0..2); the clamp only tells the compiler the index stays in range.
+        const int ei = std::min(std::countr_zero(uint32_t(nm)), 2);
+        u.hasEdge = u.coverTie && std::popcount(uint32_t(nm)) == 1 && t.edgeKind[ei] == kEdgeOriginal;
+        if (u.hasEdge) u.edge = edgeTags[ei];
         uint16_t tieClass = 0;
         if (u.coverTie)
           for (int i = 0; i < 3; ++i)

@@ -9,6 +9,7 @@
 #include "raster/command_list.h"
 #include "raster/cpu_backend.h"
 #include "raster/image_io.h"
+#include "raster/provenance.h"
 #include "tools/scenes/builder.h"
 
 namespace tessera::gl {
