@@ -175,7 +175,9 @@ std::vector<Mutation> build() {
         {"vertex_color", "void main() { o_color = v_color; }",
          "void main() { o_color = v_color - vec4(vec3(0.49 / 255.0), 0.0); }"},
         {"textured", "o_color = texel * u[7];", "o_color = texel * u[7] - vec4(vec3(0.49 / 255.0), 0.0);"}},
-       StateFault::None});
+       StateFault::None,
+       "OUTPUT_ROUNDING: float to unorm rounds to nearest (GL 4.6 section 2.3.5.2 only prefers it; both Mesa "
+       "rasterizers do it, and accepting either neighbour at every unorm pixel would hide one-LSB faults)"});
   add({"rb_swap",
        "red and blue exchanged (an RGBA8 texture taken as BGRA8)",
        "source",

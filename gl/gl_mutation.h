@@ -59,6 +59,10 @@ struct Mutation {
   std::string_view equivalent;  // non-empty: why no GL-conforming frame can tell it apart (the argument)
   std::vector<SourceEdit> edits;
   StateFault state = StateFault::None;
+  // Non-empty for an equivalent mutant that departs from a documented choice of the oracle where GL
+  // leaves freedom (docs/crosscheck.md, "Assumptions"): the verdict judges GL against that choice,
+  // so a kill is the pin working as documented, reported as such, not a verdict stricter than GL.
+  std::string_view pin;
 
   // The twin's text as the mutant compiles it: `text` with this mutation's edits for `program`
   // applied. The text is the whole file, all stages: each pattern sits under one stage's #ifdef and

@@ -68,6 +68,7 @@ nlohmann::json toJson(const MutantsResult& r) {
                         {"new_unexplained_by_scene", fresh}};
     if (!m.equivalent.empty()) j["equivalence_argument"] = m.equivalent;
     if (row.verdictTooStrict) j["verdict_stricter_than_gl"] = true;
+    if (row.killedByPin) j["killed_by_documented_pin"] = m.pin;
     mutants.push_back(j);
   }
   nlohmann::json alarms = nlohmann::json::object();
@@ -99,7 +100,7 @@ bool MutantsResult::passed() const {
   for (uint64_t a : falseAlarms)
     if (a) return false;
   for (const MutantRow& r : rows)
-    if (r.status == "survived" || r.verdictTooStrict) return false;
+    if (r.status == "survived" || (r.verdictTooStrict && !r.killedByPin)) return false;
   return true;
 }
 
@@ -152,6 +153,7 @@ MutantsResult runMutants(const std::vector<MutantFrame>& frames, const std::vect
     // apart instead of counted as a catch.
     row.status = !m->equivalent.empty() ? "equivalent" : !row.killedBy.empty() ? "killed" : "survived";
     row.verdictTooStrict = !m->equivalent.empty() && !row.killedBy.empty();
+    row.killedByPin = row.verdictTooStrict && !m->pin.empty();
     killed += row.status == "killed";
     counted += row.status != "equivalent";
     r.rows.push_back(std::move(row));
@@ -178,8 +180,11 @@ void writeMutantsReport(const MutantsResult& r, const std::string& dir) {
   for (const MutantRow& row : r.rows) {
     const gl::Mutation& m = *row.mutation;
     rows += fmt::format("<tr><td><b>{}</b></td><td>{}</td><td>{}</td><td class={}>{}{}</td>", escapeHtml(m.name),
-                        escapeHtml(m.imitates), escapeHtml(m.kind), row.verdictTooStrict ? "alarm" : row.status, row.status,
-                        row.verdictTooStrict ? " — but killed: the verdict is stricter than GL here" : "");
+                        escapeHtml(m.imitates), escapeHtml(m.kind),
+                        row.verdictTooStrict && !row.killedByPin ? "alarm" : row.status, row.status,
+                        row.killedByPin           ? " — killed by a documented pin: " + escapeHtml(m.pin)
+                        : row.verdictTooStrict ? std::string(" — but killed: the verdict is stricter than GL here")
+                                               : std::string());
     for (size_t f = 0; f < r.frames.size(); ++f) {
       const bool kill = row.newUnexplained[f] > 0;
       rows += fmt::format(

@@ -39,6 +39,7 @@ struct MutantRow {
   const gl::Mutation* mutation = nullptr;
   std::string status;                    // "killed" | "survived" | "equivalent" (catalogued with an argument)
   bool verdictTooStrict = false;         // catalogued as equivalent, yet killed: the verdict rejects what GL allows
+  bool killedByPin = false;              // ... and the mutant names the documented pin that kills it (Mutation::pin)
   std::vector<std::string> killedBy;     // frames with a new unexplained pixel
   std::vector<uint64_t> unexplained;     // per frame: unexplained pixels under the mutant
   std::vector<uint64_t> newUnexplained;  // per frame: of those, pixels the unmodified backend explains
@@ -51,7 +52,8 @@ struct MutantsResult {
   double killedPercent = 0;  // killed / mutants not catalogued as equivalent
   double runtimeSeconds = 0;
   nlohmann::json json;  // as printed by `tessera mutants`
-  // Every non-equivalent mutant killed, no equivalent one killed, and no false alarm.
+  // Every non-equivalent mutant killed, no equivalent one killed except through the documented pin it
+  // names, and no false alarm.
   bool passed() const;
 };
 

@@ -54,6 +54,36 @@ TEST(MutationCatalogue, HoldsAtLeastTwentyNamedMutantsEachSayingWhatItImitates) 
   EXPECT_EQ(gl::findMutation("no_such_mutant"), nullptr);
 }
 
+TEST(MutationCatalogue, OnlyAnEquivalentMutantNamesADocumentedPin) {
+  for (const gl::Mutation& m : gl::mutationCatalogue()) {
+    if (m.pin.empty()) continue;
+    EXPECT_FALSE(m.equivalent.empty()) << m.name << ": a pin excuses only a kill of a conforming mutant";
+  }
+  ASSERT_NE(gl::findMutation("unorm_truncate"), nullptr);
+  EXPECT_NE(gl::findMutation("unorm_truncate")->pin.find("OUTPUT_ROUNDING"), std::string_view::npos);
+}
+
+TEST(MutantsResult, AnEquivalentMutantKilledFailsTheRunUnlessItNamesThePinThatKillsIt) {
+  gl::Mutation pinned, unpinned;
+  pinned.equivalent = unpinned.equivalent = "GL allows it";
+  pinned.pin = "a documented choice";
+  verify::MutantsResult r;
+  r.falseAlarms = {0};
+  verify::MutantRow row;
+  row.status = "equivalent";
+  row.verdictTooStrict = true;
+  row.killedByPin = true;
+  row.mutation = &pinned;
+  r.rows = {row};
+  EXPECT_TRUE(r.passed());
+  r.rows[0].killedByPin = false;
+  r.rows[0].mutation = &unpinned;
+  EXPECT_FALSE(r.passed()) << "a verdict stricter than GL without a documented pin";
+  r.rows[0].verdictTooStrict = false;
+  r.falseAlarms = {1};
+  EXPECT_FALSE(r.passed()) << "a false alarm of the unmodified backend";
+}
+
 TEST(MutationCatalogue, EverySourceEditChangesTheTwinItNames) {
   for (const gl::Mutation& m : gl::mutationCatalogue()) {
     std::set<std::string_view> programs;
