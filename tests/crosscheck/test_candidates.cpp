@@ -12,33 +12,14 @@
 #include "raster/image_io.h"
 #include "tools/scenes/scene_common.h"
 #include "tools/scenes/scenes.h"
+#include "tests/crosscheck/provenance_render.h"
 #include "verify/judge.h"
 
 using namespace tessera;
 
 namespace {
-struct Rendered {
-  std::unique_ptr<CpuBackend> b;
-  TextureData* tex = nullptr;
-  PresentedImage img;
-  std::vector<uint8_t> pixels;
-  size_t w = 0, h = 0;
-};
-
-// Renders in provenance mode for an implementation with 8 sub-pixel bits (llvmpipe's).
-Rendered render(const CommandList& list, uint32_t image = 0) {
-  Rendered r;
-  RenderOptions o;
-  o.provenance = true;
-  o.otherSubpixelBits = 8;
-  r.b = std::make_unique<CpuBackend>(o);
-  r.b->execute(list, "test");
-  r.img = r.b->presented().at(image);
-  r.tex = const_cast<TextureData*>(r.b->texture(r.img.texture));
-  r.pixels = imagePixels(*r.tex, r.img.level, r.img.layer);
-  r.w = r.tex->desc.width, r.h = r.tex->desc.height;
-  return r;
-}
+using Rendered = ProvenanceRender;
+Rendered render(const CommandList& list, uint32_t image = 0) { return renderWithProvenance(list, image); }
 Rendered renderScene(const char* name, uint32_t image = 0) {
   const scenes::SceneInfo* s = scenes::find(name);
   return render(scenes::build(s->name, s->width, s->height), image);

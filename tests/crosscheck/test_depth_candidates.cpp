@@ -9,6 +9,7 @@
 #include "raster/cpu_backend.h"
 #include "raster/image_io.h"
 #include "tools/scenes/scene_common.h"
+#include "tests/crosscheck/provenance_render.h"
 #include "verify/judge.h"
 
 using namespace tessera;
@@ -17,26 +18,8 @@ namespace {
 
 constexpr int kSize = 32;
 
-struct Rendered {
-  std::unique_ptr<CpuBackend> b;
-  TextureData* tex = nullptr;
-  PresentedImage img;
-  std::vector<uint8_t> pixels;
-};
-
-// Renders in provenance mode for an implementation with 8 sub-pixel bits (llvmpipe's).
-Rendered render(const CommandList& list) {
-  Rendered r;
-  RenderOptions o;
-  o.provenance = true;
-  o.otherSubpixelBits = 8;
-  r.b = std::make_unique<CpuBackend>(o);
-  r.b->execute(list, "test");
-  r.img = r.b->presented().at(0);
-  r.tex = const_cast<TextureData*>(r.b->texture(r.img.texture));
-  r.pixels = imagePixels(*r.tex, r.img.level, r.img.layer);
-  return r;
-}
+using Rendered = ProvenanceRender;
+Rendered render(const CommandList& list, uint32_t image = 0) { return renderWithProvenance(list, image); }
 
 // Top-down byte offset of GL pixel (x, y), and its classes (stored bottom row first).
 size_t at(int x, int y) { return (size_t(kSize - 1 - y) * kSize + size_t(x)) * 4; }
