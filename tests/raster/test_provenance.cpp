@@ -165,6 +165,34 @@ TEST(ProvenanceClasses, ABlendedWriteCarriesTheDerivedToleranceAndPropagatesInto
 }
 
 namespace {
+// One "textured" quad over the whole w x h viewport (identity MVP) sampling a size x size texture whose
+// column x has colourOf(x) in every row, with sampler `s`; st holds the texcoords at the corners
+// (-1, -1), (1, -1), (1, 1), (-1, 1).
+CommandList stripeQuadFrame(uint32_t w, uint32_t h, uint32_t size, std::array<uint8_t, 4> (*colourOf)(uint32_t),
+                            bool mipmaps, const SamplerState& s, const std::array<glm::vec4, 4>& st) {
+  CommandList cl;
+  RenderTarget t;
+  t.color[0] = createTarget(cl, Format::RGBA8, w, h);
+  cl.setRenderTarget(t);
+  cl.setViewport({0, 0, int32_t(w), int32_t(h)});
+  cl.clearColor(0, {0, 0, 0, 0});
+  RgbaImage img;
+  img.width = img.height = size;
+  img.rgba.resize(size_t(size) * size * 4);
+  for (uint32_t y = 0; y < size; ++y)
+    for (uint32_t x = 0; x < size; ++x) img.set(x, y, colourOf(x));
+  cl.bindTexture(0, uploadTexture(cl, img, mipmaps));
+  cl.bindSampler(0, cl.createSampler(s));
+  Mesh m;
+  m.quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, st[0], st[1], st[2], st[3]);
+  const uint32_t n = bindMesh(cl, m);
+  cl.useProgram(cl.createProgram("textured"));
+  setMatrix(cl, 0, glm::mat4(1.0f));
+  setTexturedDefaults(cl);
+  cl.drawIndexed(0, n);
+  return cl;
+}
+
 // A 16 x 12 frame filled by one "textured" quad (identity MVP, full viewport) sampling a 4 x 4
 // texture with NEAREST filters: columns 0-1 red, columns 2-3 blue, so the texture changes only at
 // s = 0.5 (and at the REPEAT seam s = 0 / 1). Texcoords run from sOffset to 1 + sOffset across the
@@ -172,32 +200,13 @@ namespace {
 // (magnification, lambda = log2(1/3), far from the mag/min switch at 0). 16 x 12 rather than square
 // keeps the quad's diagonal (slope 3/4) off every pixel centre.
 CommandList nearestFrame(float sOffset) {
-  CommandList cl;
-  RenderTarget t;
-  t.color[0] = createTarget(cl, Format::RGBA8, 16, 12);
-  cl.setRenderTarget(t);
-  cl.setViewport({0, 0, 16, 12});
-  cl.clearColor(0, {0, 0, 0, 0});
-  RgbaImage img;
-  img.width = img.height = 4;
-  img.rgba.resize(4 * 4 * 4);
-  for (uint32_t y = 0; y < 4; ++y)
-    for (uint32_t x = 0; x < 4; ++x)
-      img.set(x, y, x < 2 ? std::array<uint8_t, 4>{255, 0, 0, 255} : std::array<uint8_t, 4>{0, 0, 255, 255});
-  cl.bindTexture(0, uploadTexture(cl, img, false));
   SamplerState s;
   s.minFilter = Filter::Nearest;
   s.magFilter = Filter::Nearest;
-  cl.bindSampler(0, cl.createSampler(s));
-  Mesh m;
   const float s0 = sOffset, s1 = 1.0f + sOffset;
-  m.quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, {s0, 0, 0, 0}, {s1, 0, 0, 0}, {s1, 1, 0, 0}, {s0, 1, 0, 0});
-  const uint32_t n = bindMesh(cl, m);
-  cl.useProgram(cl.createProgram("textured"));
-  setMatrix(cl, 0, glm::mat4(1.0f));
-  setTexturedDefaults(cl);
-  cl.drawIndexed(0, n);
-  return cl;
+  return stripeQuadFrame(
+      16, 12, 4, [](uint32_t x) { return x < 2 ? std::array<uint8_t, 4>{255, 0, 0, 255} : std::array<uint8_t, 4>{0, 0, 255, 255}; },
+      false, s, {glm::vec4{s0, 0, 0, 0}, {s1, 0, 0, 0}, {s1, 1, 0, 0}, {s0, 1, 0, 0}});
 }
 }  // namespace
 
@@ -461,33 +470,14 @@ namespace {
 // vertical stripes (black, white), with s from 0 to 1.25 across and t = 1/2: 1.25 texels per pixel,
 // lambda = log2(1.25) = 0.32, between the mag/min switch points c = 0 and c = 1/2, 1/16 or more from both.
 CommandList switchFrame(Filter mag) {
-  CommandList cl;
-  RenderTarget t;
-  t.color[0] = createTarget(cl, Format::RGBA8, 16, 16);
-  cl.setRenderTarget(t);
-  cl.setViewport({0, 0, 16, 16});
-  cl.clearColor(0, {0, 0, 0, 0});
-  RgbaImage img;
-  img.width = img.height = 16;
-  img.rgba.resize(16 * 16 * 4);
-  for (uint32_t y = 0; y < 16; ++y)
-    for (uint32_t x = 0; x < 16; ++x)
-      img.set(x, y, x % 2 ? std::array<uint8_t, 4>{255, 255, 255, 255} : std::array<uint8_t, 4>{0, 0, 0, 255});
-  cl.bindTexture(0, uploadTexture(cl, img, true));
   SamplerState s;
   s.minFilter = Filter::NearestMipmapNearest;
   s.magFilter = mag;
-  cl.bindSampler(0, cl.createSampler(s));
-  Mesh m;
   // t is constant, so rho = |ds/dx| exactly under every legal rho rule (GL 4.6 eq. 8.7's bounds meet).
-  m.quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, {0, 0.5f, 0, 0}, {1.25f, 0.5f, 0, 0}, {1.25f, 0.5f, 0, 0},
-         {0, 0.5f, 0, 0});
-  const uint32_t n = bindMesh(cl, m);
-  cl.useProgram(cl.createProgram("textured"));
-  setMatrix(cl, 0, glm::mat4(1.0f));
-  setTexturedDefaults(cl);
-  cl.drawIndexed(0, n);
-  return cl;
+  return stripeQuadFrame(
+      16, 16, 16,
+      [](uint32_t x) { return x % 2 ? std::array<uint8_t, 4>{255, 255, 255, 255} : std::array<uint8_t, 4>{0, 0, 0, 255}; },
+      true, s, {glm::vec4{0, 0.5f, 0, 0}, {1.25f, 0.5f, 0, 0}, {1.25f, 0.5f, 0, 0}, {0, 0.5f, 0, 0}});
 }
 }  // namespace
 
@@ -517,32 +507,14 @@ namespace {
 // (x, y) looks up the exact texel centre (x + 1/2, y + 1/2): weights 0 and 1 (lambda = 0, LINEAR for
 // magnification and minification alike).
 CommandList texelCentreFrame() {
-  CommandList cl;
-  RenderTarget t;
-  t.color[0] = createTarget(cl, Format::RGBA8, 16, 16);
-  cl.setRenderTarget(t);
-  cl.setViewport({0, 0, 16, 16});
-  cl.clearColor(0, {0, 0, 0, 0});
-  RgbaImage img;
-  img.width = img.height = 16;
-  img.rgba.resize(16 * 16 * 4);
-  for (uint32_t y = 0; y < 16; ++y)
-    for (uint32_t x = 0; x < 16; ++x)
-      img.set(x, y, x < 8 ? std::array<uint8_t, 4>{0, 0, 0, 255} : std::array<uint8_t, 4>{255, 255, 255, 255});
-  cl.bindTexture(0, uploadTexture(cl, img, false));
   SamplerState s;
   s.minFilter = Filter::Linear;
   s.magFilter = Filter::Linear;
   s.wrapS = s.wrapT = Wrap::ClampToEdge;
-  cl.bindSampler(0, cl.createSampler(s));
-  Mesh m;
-  m.quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, {0, 0, 0, 0}, {1, 0, 0, 0}, {1, 1, 0, 0}, {0, 1, 0, 0});
-  const uint32_t n = bindMesh(cl, m);
-  cl.useProgram(cl.createProgram("textured"));
-  setMatrix(cl, 0, glm::mat4(1.0f));
-  setTexturedDefaults(cl);
-  cl.drawIndexed(0, n);
-  return cl;
+  return stripeQuadFrame(
+      16, 16, 16,
+      [](uint32_t x) { return x < 8 ? std::array<uint8_t, 4>{0, 0, 0, 255} : std::array<uint8_t, 4>{255, 255, 255, 255}; },
+      false, s, {glm::vec4{0, 0, 0, 0}, {1, 0, 0, 0}, {1, 1, 0, 0}, {0, 1, 0, 0}});
 }
 }  // namespace
 
