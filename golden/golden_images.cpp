@@ -1,6 +1,7 @@
 #include "golden/golden_images.h"
 
 #include "golden/railway_frames.h"
+#include "golden/tab_railway_frames.h"
 
 namespace tessera::golden {
 
@@ -18,6 +19,14 @@ void renderGoldenImages(const ImageSource& source, const std::string& railwayPat
     RenderedImage img;
     img.name = f.name;
     img.scene = kRailwayScene;
+    img.command = f.command;
+    img.texture = f.image.get();
+    visit(img);
+  }
+  for (const RailwayFrame& f : tabRailwayFrames(railwayPath)) {
+    RenderedImage img;
+    img.name = f.name;
+    img.scene = kTabRailwayScene;
     img.command = f.command;
     img.texture = f.image.get();
     visit(img);

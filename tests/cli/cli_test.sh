@@ -19,19 +19,65 @@ case "$case_name" in
   demo_writes_report_and_images)
     # The scenes half of the demo; demo_runs_the_atlas_tree_on_railway runs the other half, so that each
     # stays well inside its timeout in the ASan build on a loaded machine.
-    "$tessera" demo -o demo --threads 2 --no-mta > stdout.json
+    "$tessera" demo -o demo --threads 2 --no-mta --no-tab > stdout.json
     for f in report.json index.html fill_fan.png city_block.png city_ids.exr city_ids.a1.exr city_block.tframe; do
       [ -s "demo/$f" ] || fail "demo did not write $f"
     done
     [ "$(json_field demo/report.json "['bit_identical_1_vs_n_threads']")" = "True" ] || fail "thread check failed"
     ;;
   demo_runs_the_atlas_tree_on_railway)
-    "$tessera" demo -o demo --threads 2 --no-gl --no-thread-check --railway "$src/data/railway.glb" > stdout.json
+    "$tessera" demo -o demo --threads 2 --no-gl --no-thread-check --no-tab --railway "$src/data/railway.glb" > stdout.json
     for f in report.json index.html mta/render/plot.png mta/runs/runs.png mta/texel/histogram.png mta/render/frames.json; do
       [ -s "demo/$f" ] || fail "demo did not write $f"
     done
     [ "$(json_field demo/report.json "['atlas_tree']['texel']['magnification_violations_when_every_needed_block_resident']")" = "0" ] \
       || fail "the demo's atlas tree magnifies beyond tau"
+    ;;
+  demo_runs_texture_array_batching_on_railway)
+    "$tessera" demo -o demo --threads 2 --no-gl --no-thread-check --no-mta --railway "$src/data/railway.glb" > stdout.json
+    for f in report.json index.html tab/railway.tab tab/render/plot.png tab/render/index.html tab/render/frames.json \
+             tab/render/batched_0012.png tab/render/baseline_0012.tframe tab/render/diff_0012.png; do
+      [ -s "demo/$f" ] || fail "demo did not write $f"
+    done
+    [ "$(json_field demo/report.json "['texture_array_batching']['render']['batched']['draw_calls_max']")" = "2.0" ] \
+      || fail "railway is not drawn in two geometry batches"
+    [ "$(json_field demo/report.json "['texture_array_batching']['render']['baseline']['draw_calls_max']")" = "33.0" ] \
+      || fail "the baseline does not draw each of the 33 meshes"
+    ;;
+  tab_build_info_render_end_to_end)
+    "$tessera" tab build "$src/data/railway.glb" -o rw.tab --quiet > build.json
+    [ "$(json_field build.json "['output_batches']")" = "2" ] || fail "railway at a_max 8 needs 2 output batches"
+    [ "$(json_field build.json "['input_batches']")" = "33" ] || fail "railway has 33 input batches"
+    "$tessera" tab build "$src/data/railway.glb" -o rw2.tab --quiet > /dev/null
+    cmp -s rw.tab rw2.tab || fail "the same model gave different .tab bytes"
+    "$tessera" tab info rw.tab > info.json
+    [ "$(json_field info.json "['geometry_batches']")" = "2" ] || fail "tab info disagrees with tab build"
+    "$tessera" tab render rw.tab --both --frames 4 --size 96x72 --save-every 2 -o r --quiet > summary.json
+    for f in frames.json plot.png index.html batched_0000.png baseline_0000.png batched_0003.tframe diff_0002.png; do
+      [ -s "r/$f" ] || fail "tab render did not write $f"
+    done
+    [ "$(json_field r/frames.json "['frames'][1]['variant']")" = "batched" ] || fail "frames.json rows lack the variant"
+    [ "$(json_field r/frames.json "['frames'][1]['draw_calls']")" = "2" ] || fail "batched frame is not 2 draws"
+    # A saved frame replays to the same image.
+    "$tessera" replay r/batched_0003.tframe -o replay.png --stats replay.json > /dev/null
+    [ "$(json_field replay.json "['image_sha256']")" = "$(json_field r/frames.json "['frames'][7]['image_sha256']")" ] \
+      || fail "the saved batched frame does not replay to its image"
+    ;;
+  tab_bad_input_exits_2)
+    refused 2 "--a-max: 9 must be in 1..8" "$tessera" tab build "$src/data/railway.glb" -o x.tab --a-max 9
+    [ ! -e x.tab ] || fail "a refused build left x.tab"
+    refused 2 "--b-max: 3 must be above 3" "$tessera" tab build "$src/data/railway.glb" -o x.tab --b-max 3
+    refused 2 "--d-max: 0 must be in 1..2048" "$tessera" tab build "$src/data/railway.glb" -o x.tab --d-max 0
+    refused 2 "nope.glb" "$tessera" tab build nope.glb -o x.tab
+    "$tessera" tab build "$src/data/railway.glb" -o ok.tab --quiet > /dev/null
+    head -c 1000 ok.tab > short.tab
+    refused 2 "short.tab" "$tessera" tab info short.tab
+    refused 2 "short.tab" "$tessera" tab render short.tab -o out
+    cp ok.tab flipped.tab
+    printf '\x55' | dd of=flipped.tab bs=1 seek=5000 conv=notrunc 2> /dev/null
+    refused 2 "flipped.tab" "$tessera" tab info flipped.tab
+    refused 2 "--baseline and --both" "$tessera" tab render ok.tab --baseline --both -o out2
+    ls | grep -q 'tmp' && fail "a temporary file was left: $(ls)"
     ;;
   replay_matches_render)
     "$tessera" render texture_array --threads 2 -o a.png --stats a.json --record a.tframe > /dev/null
@@ -243,7 +289,7 @@ PY
   output_in_the_way_exits_2)
     printf 'not a directory' > afile
     refused 2 "afile: exists and is not a directory (-o names the output directory)" \
-      "$tessera" demo -o afile --no-gl --no-mta --no-thread-check
+      "$tessera" demo -o afile --no-gl --no-mta --no-tab --no-thread-check
     refused 2 "afile: exists and is not a directory" "$tessera" city --preset berlin --buildings 2 -o afile --quiet
     # The output directory is checked before the tree is opened (tree.mta does not even exist).
     refused 2 "afile/sub: cannot create the directory: afile is not a directory" \
@@ -261,11 +307,11 @@ PY
     refused 2 "afile/x.png" "$tessera" render blend -o afile/x.png
     refused 2 "afile/s.json" "$tessera" render blend --stats afile/s.json
     # Unwritable places: /proc refuses new entries even to root; a read-only directory refuses others.
-    refused 2 "/proc/tessera_cli_test: cannot create the directory" "$tessera" demo -o /proc/tessera_cli_test --no-gl --no-mta
+    refused 2 "/proc/tessera_cli_test: cannot create the directory" "$tessera" demo -o /proc/tessera_cli_test --no-gl --no-mta --no-tab
     if [ "$(id -u)" != 0 ]; then
       mkdir ro && chmod 555 ro
-      refused 2 "ro/out: cannot create the directory: Permission denied" "$tessera" demo -o ro/out --no-gl --no-mta
-      refused 2 "ro: cannot write into it" "$tessera" demo -o ro --no-gl --no-mta
+      refused 2 "ro/out: cannot create the directory: Permission denied" "$tessera" demo -o ro/out --no-gl --no-mta --no-tab
+      refused 2 "ro: cannot write into it" "$tessera" demo -o ro --no-gl --no-mta --no-tab
       chmod 755 ro
     fi
     [ "$(cat afile)" = "not a directory" ] || fail "afile was changed"
@@ -273,7 +319,7 @@ PY
   threads_above_the_bound_exit_2)
     # One bound, kMaxThreads = 256 (docs/limits.md), for every --threads; checked before any work, so the
     # missing inputs below are never opened.
-    for cmd in "render blend" "replay none.tframe" "demo -o d --no-gl --no-mta" "crosscheck blend" "visibility city_ids" \
+    for cmd in "render blend" "replay none.tframe" "demo -o d --no-gl --no-mta --no-tab" "crosscheck blend" "visibility city_ids" \
                "bench crosscheck blend" "mta build none.glb -o t.mta" "mta render none.mta -o r" "mta runs none.mta -o r" \
                "texel none.mta -o r"; do
       for n in 257 100000; do

@@ -20,6 +20,7 @@
 #include "tools/cli/frame_job.h"
 #include "tools/cli/gl_options.h"
 #include "tools/cli/mta_demo.h"
+#include "tools/cli/tab_demo.h"
 #include "tools/cli/options.h"
 #include "tools/cli/output_directory.h"
 #include "tools/scenes/scenes.h"
@@ -34,6 +35,7 @@ struct DemoArgs {
   bool checkThreads = true;
   bool gl = true;
   bool mta = true;
+  bool tab = true;
   std::string railway = "data/railway.glb";
   ResourceLimits limits;  // the scenes' frames (the atlas tree's frames are small and keep the default)
   gl::GlOptions glOptions;  // --gl-driver, --gl-version, --egl-platform
@@ -149,6 +151,11 @@ void runDemo(const DemoArgs& a) {
     report["atlas_tree"] = m.report;
     mtaHtml = m.html;
   }
+  if (a.tab) {
+    const TabDemoResult t = runTabDemo(a.outDir, a.railway, threads);
+    report["texture_array_batching"] = t.report;
+    mtaHtml += t.html;
+  }
   report["bit_identical_1_vs_n_threads"] = allAgree;
   if (glb) report["gl_every_pixel_explained"] = allExplained;
   writeTextFile(a.outDir + "/report.json", report.dump(2) + "\n");
@@ -180,7 +187,8 @@ void addDemoCommand(CLI::App& app) {
   demo->add_flag("!--no-gl", a->gl, "Skip the oracle-vs-OpenGL cross-check of every scene");
   addGlBackendOptions(demo, a->glOptions);
   demo->add_flag("!--no-mta", a->mta, "Skip the atlas tree on railway.glb (build, render over the thesis path, runs, texel)");
-  demo->add_option("--railway", a->railway, "railway.glb, the real scene of the atlas tree demo (data/README.md)")->capture_default_str();
+  demo->add_flag("!--no-tab", a->tab, "Skip texture-array batching on railway.glb (build, render baseline and batched, compare)");
+  demo->add_option("--railway", a->railway, "railway.glb, the real scene of the atlas tree and TAB demos (data/README.md)")->capture_default_str();
   demo->callback([a] {
     a->railway = repoPath(a->railway);  // found from the clone's root or beside the build folder
     runDemo(*a);

@@ -15,5 +15,6 @@ void addMtaCommands(CLI::App& app);     // mta build / info (cmd_mta.cpp), then 
 void addMtaRenderCommand(CLI::App* mtaCmd);  // mta render (cmd_mta_render.cpp)
 void addMtaRunsCommand(CLI::App* mtaCmd);    // mta runs (cmd_mta_runs.cpp)
 void addTexelCommand(CLI::App& app);         // texel (cmd_texel.cpp)
+void addTabCommands(CLI::App& app);          // tab build / info / render (cmd_tab.cpp)
 
 }  // namespace tessera::cli

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   tessera::cli::addMutantsCommand(app);
   tessera::cli::addCityCommand(app);
   tessera::cli::addMtaCommands(app);
+  tessera::cli::addTabCommands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {

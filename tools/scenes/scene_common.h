@@ -26,6 +26,7 @@ void buildClipPlanesWith(CommandList& cl, int w, int h, const std::function<void
 void buildBlend(CommandList& cl, int w, int h);
 void buildDepth(CommandList& cl, int w, int h);
 void buildCityBlock(CommandList& cl, int w, int h);
+void buildCityBlockTab(CommandList& cl, int w, int h);
 void buildCityIds(CommandList& cl, int w, int h);
 void buildProvokingVertex(CommandList& cl, int w, int h);
 void buildArrayLayers(CommandList& cl, int w, int h);

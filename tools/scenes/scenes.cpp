@@ -20,6 +20,7 @@ const std::vector<Entry>& entries() {
       {{"blend", "blending: every equation and a set of factors over a gradient, in RGBA8", 256, 128}, buildBlend},
       {{"depth", "depth: interpenetrating triangles under LESS, then GEQUAL / EQUAL / ALWAYS passes", 192, 192}, buildDepth},
       {{"city_block", "a textured city block: 256 facade textures, depth, ~60k triangles, one bind per facade", 320, 240}, buildCityBlock},
+      {{"city_block_tab", "city_block batched with texture arrays (TAB): 256 facades in one 256-layer array, ground and buildings in one draw call", 320, 240}, buildCityBlockTab},
       {{"far_vertices", "clip_planes with every other vertex at x = -3.4e38: clipping at the limits of float (valid input)", 192, 192}, buildFarVertices},
       {{"city_ids", "the city block through the object_id program into two R32UI targets (object id, primitive id)", 320, 240}, buildCityIds},
       {{"provoking_vertex", "flat varyings: object_id with a different id on each vertex, so every pixel shows the provoking (last) vertex", 64, 64}, buildProvokingVertex},
