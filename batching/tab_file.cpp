@@ -126,7 +126,8 @@ class Encoder {
 
 // Counts are u32 in the file; the writer refuses what would not fit rather than wrapping.
 void fits32(uint64_t n, const char* what) {
-  if (n > UINT32_MAX) throw Error(std::string("tab file: ") + what + ": " + std::to_string(n) + " does not fit 32 bits");
+  if (n > UINT32_MAX)
+    throw Error(std::string("tab file: ") + what + ": " + std::to_string(n) + " does not fit 32 bits");
 }
 
 void encode(const TabScene& s, Sink& sink) {
@@ -178,7 +179,8 @@ void encode(const TabScene& s, Sink& sink) {
         o.put(t.alphaCutoff), o.put<uint8_t>(t.opaque ? 1 : 0);
       }
       o.put<uint32_t>(uint32_t(b.geometry.size()));
-      for (const GeometryBatch& g : b.geometry) o.put(g.firstVertex), o.put(g.vertexCount), o.put(g.firstMesh), o.put(g.meshCount);
+      for (const GeometryBatch& g : b.geometry)
+        o.put(g.firstVertex), o.put(g.vertexCount), o.put(g.firstMesh), o.put(g.meshCount);
     }
     e.section(uint32_t(TabSection::Batches), o.b);
   }
@@ -295,13 +297,15 @@ class Reader {
     while (n > 0) {
       const ssize_t r = ::pread(fd_, dst, size_t(std::min<uint64_t>(n, 1u << 30)), off_t(offset));
       if (r < 0 && errno == EINTR) continue;
-      if (r <= 0) fail(std::string("cannot read the ") + what + (r < 0 ? std::string(": ") + std::strerror(errno) : ": file shrank"));
+      if (r <= 0)
+        fail(std::string("cannot read the ") + what +
+             (r < 0 ? std::string(": ") + std::strerror(errno) : ": file shrank"));
       dst += r, offset += uint64_t(r), n -= uint64_t(r);
     }
   }
 
   void header() {
-    struct stat st{};
+    struct stat st {};
     if (::fstat(fd_, &st) != 0) fail(std::string("cannot stat: ") + std::strerror(errno));
     if (!S_ISREG(st.st_mode)) fail("not a regular file, not a .tab file");
     size_ = uint64_t(st.st_size);
@@ -311,16 +315,26 @@ class Reader {
     std::array<uint8_t, kTabHeaderSize> h;
     readAt(0, h.data(), kTabHeaderSize, "header");
     if (std::memcmp(h.data(), kMagic, 8) != 0) fail("not a Tessera .tab file (bad magic)");
-    auto u32 = [&](size_t o) { uint32_t v; std::memcpy(&v, h.data() + o, 4); return v; };
-    auto u64 = [&](size_t o) { uint64_t v; std::memcpy(&v, h.data() + o, 8); return v; };
+    auto u32 = [&](size_t o) {
+      uint32_t v;
+      std::memcpy(&v, h.data() + o, 4);
+      return v;
+    };
+    auto u64 = [&](size_t o) {
+      uint64_t v;
+      std::memcpy(&v, h.data() + o, 8);
+      return v;
+    };
     if (u32(8) != kTabFormatVersion)
       fail("header.version: " + std::to_string(u32(8)) + " (this reader knows version " +
            std::to_string(kTabFormatVersion) + ")");
     const auto sha = sha256(std::span<const uint8_t>(h.data(), kHeaderShaOffset));
     if (std::memcmp(sha.data(), h.data() + kHeaderShaOffset, 32) != 0)
       fail("header checksum mismatch (corrupted header)");
-    if (u32(12) != kTabHeaderSize) fail("header.header_size: " + std::to_string(u32(12)) + ", expected " + std::to_string(kTabHeaderSize));
-    if (u32(16) != kTabSectionCount) fail("header.section_count: " + std::to_string(u32(16)) + ", expected " + std::to_string(kTabSectionCount));
+    if (u32(12) != kTabHeaderSize)
+      fail("header.header_size: " + std::to_string(u32(12)) + ", expected " + std::to_string(kTabHeaderSize));
+    if (u32(16) != kTabSectionCount)
+      fail("header.section_count: " + std::to_string(u32(16)) + ", expected " + std::to_string(kTabSectionCount));
     if (u32(20) != 0) fail("header.reserved: " + std::to_string(u32(20)) + " (must be 0)");
     const uint64_t fileSize = u64(24);
     if (fileSize != size_)
@@ -330,15 +344,20 @@ class Reader {
     for (uint32_t k = 0; k < kTabSectionCount; ++k) {
       const size_t o = kTableOffset + size_t(k) * kEntrySize;
       const std::string f = at("header.sections", k);
-      if (u32(o) != k + 1) fail(f + ".kind: " + std::to_string(u32(o)) + ", expected " + std::to_string(k + 1) + " (" + sectionName(k + 1) + ")");
+      if (u32(o) != k + 1)
+        fail(f + ".kind: " + std::to_string(u32(o)) + ", expected " + std::to_string(k + 1) + " (" +
+             sectionName(k + 1) + ")");
       if (u32(o + 4) != 0) fail(f + ".reserved: " + std::to_string(u32(o + 4)) + " (must be 0)");
       TableEntry& t = table_[k];
       t.offset = u64(o + 8), t.size = u64(o + 16);
       std::memcpy(t.sha.data(), h.data() + o + 24, 32);
       // The sections follow each other without gaps from the end of the header to the end of the file.
-      if (t.offset != end) fail(f + ".offset: " + std::to_string(t.offset) + ", expected " + std::to_string(end) + " (where the previous section ends)");
+      if (t.offset != end)
+        fail(f + ".offset: " + std::to_string(t.offset) + ", expected " + std::to_string(end) +
+             " (where the previous section ends)");
       if (t.size > size_ - end)
-        fail(f + ".size: " + std::to_string(t.size) + " bytes from offset " + std::to_string(t.offset) + " run past the end of the " + std::to_string(size_) + "-byte file");
+        fail(f + ".size: " + std::to_string(t.size) + " bytes from offset " + std::to_string(t.offset) +
+             " run past the end of the " + std::to_string(size_) + "-byte file");
       end += t.size;
     }
     if (end != size_) fail("sections end at byte " + std::to_string(end) + " of " + std::to_string(size_));
@@ -403,7 +422,8 @@ class Reader {
       fail(overLimitMessage("texels", "of texels", need, limits_.modelTextureBytes, "--model-budget-textures", true));
     const TableEntry& t = table_[uint32_t(TabSection::Texels) - 1];
     if (need != t.size)
-      fail("texels section: " + std::to_string(t.size) + " bytes, but the textures' mip chains need " + std::to_string(need));
+      fail("texels section: " + std::to_string(t.size) + " bytes, but the textures' mip chains need " +
+           std::to_string(need));
     Sha256 sha;
     uint64_t offset = t.offset;
     for (TabTexture& tex : s.textures) {

@@ -24,7 +24,15 @@ namespace tessera::batching {
 
 constexpr uint32_t kTabFormatVersion = 1;
 // The sections, in file order; the section table lists each exactly once, in this order.
-enum class TabSection : uint32_t { Meta = 1, Textures = 2, Texels = 3, Arrays = 4, Batches = 5, Meshes = 6, Vertices = 7 };
+enum class TabSection : uint32_t {
+  Meta = 1,
+  Textures = 2,
+  Texels = 3,
+  Arrays = 4,
+  Batches = 5,
+  Meshes = 6,
+  Vertices = 7
+};
 constexpr uint32_t kTabSectionCount = 7;
 // magic 8, version 4, header size 4, section count 4, reserved 4, file size 8; 7 x (kind 4, reserved 4,
 // offset 8, size 8, SHA-256 32); SHA-256 of everything before it.

@@ -21,9 +21,12 @@ std::string n(uint64_t v) { return std::to_string(v); }
 
 const char* wrapName(WrapMode w) {
   switch (w) {
-    case WrapMode::Repeat: return "repeat";
-    case WrapMode::ClampToEdge: return "clamp";
-    case WrapMode::MirroredRepeat: return "mirrored-repeat";
+    case WrapMode::Repeat:
+      return "repeat";
+    case WrapMode::ClampToEdge:
+      return "clamp";
+    case WrapMode::MirroredRepeat:
+      return "mirrored-repeat";
   }
   return "?";
 }
@@ -42,7 +45,7 @@ class Validator {
     counts();
     textures();
     arrays();
-    meshes();    // before batches: the geometry batches are checked against the meshes
+    meshes();  // before batches: the geometry batches are checked against the meshes
     batches();
     vertices();
   }
@@ -63,7 +66,8 @@ class Validator {
       if (!std::isfinite(b)) fail("bounds", num(b) + " is not finite");
     for (int k = 0; k < 3; ++k)
       if (!(s_.bounds[size_t(k)] <= s_.bounds[size_t(k) + 3]))
-        fail("bounds", "min " + num(s_.bounds[size_t(k)]) + " > max " + num(s_.bounds[size_t(k) + 3]) + " on axis " + n(uint64_t(k)));
+        fail("bounds", "min " + num(s_.bounds[size_t(k)]) + " > max " + num(s_.bounds[size_t(k) + 3]) + " on axis " +
+                           n(uint64_t(k)));
   }
 
   // Every count is a u32 in the file (and vertex ranges are u32).
@@ -111,9 +115,11 @@ class Validator {
         fail(f + ".layers", n(a.layers.size()) + " layers, over params.d_max = " + n(s_.params.dMax));
       for (size_t l = 0; l < a.layers.size(); ++l) {
         const uint32_t t = a.layers[l];
-        if (t >= s_.textures.size()) fail(at(f + ".layers", l), "texture " + n(t) + " does not exist (" + n(s_.textures.size()) + " textures)");
+        if (t >= s_.textures.size())
+          fail(at(f + ".layers", l), "texture " + n(t) + " does not exist (" + n(s_.textures.size()) + " textures)");
         if (keyOf(s_.textures[t]) != k)
-          fail(at(f + ".layers", l), "texture " + n(t) + " is " + keyText(keyOf(s_.textures[t])) + ", but the array holds " + keyText(k));
+          fail(at(f + ".layers", l),
+               "texture " + n(t) + " is " + keyText(keyOf(s_.textures[t])) + ", but the array holds " + keyText(k));
       }
     }
   }
@@ -125,7 +131,8 @@ class Validator {
     for (size_t i = 0; i < s_.meshes.size(); ++i) {
       const TabMesh& m = s_.meshes[i];
       const std::string f = at("meshes", i);
-      if (m.name.size() > UINT32_MAX || m.textures.size() > UINT32_MAX) fail(f, "a string or list is longer than 2^32 - 1");
+      if (m.name.size() > UINT32_MAX || m.textures.size() > UINT32_MAX)
+        fail(f, "a string or list is longer than 2^32 - 1");
       if (uint8_t(m.kind) > 2) fail(f + ".kind", n(uint8_t(m.kind)) + " is not 0, 1 or 2");
       if (uint8_t(m.alphaMode) > 2) fail(f + ".alpha_mode", n(uint8_t(m.alphaMode)) + " is not 0, 1 or 2");
       if (i > 0 && m.kind < s_.meshes[i - 1].kind)
@@ -134,14 +141,16 @@ class Validator {
       if (m.kind == MeshKind::Batched) ++batched_;
       if (m.firstVertex != end)
         fail(f + ".first_vertex", n(m.firstVertex) + ", expected " + n(end) + " (where the previous mesh ends)");
-      if (m.vertexCount % 3 != 0) fail(f + ".vertex_count", n(m.vertexCount) + " is not a multiple of 3 (3 vertices per triangle)");
+      if (m.vertexCount % 3 != 0)
+        fail(f + ".vertex_count", n(m.vertexCount) + " is not a multiple of 3 (3 vertices per triangle)");
       end += m.vertexCount;
       if (end > s_.vertices.size())
         fail(f + ".vertex_count", "vertices [" + n(m.firstVertex) + ", +" + n(m.vertexCount) + ") run past the " +
                                       n(s_.vertices.size()) + " vertices");
       for (size_t u = 0; u < m.textures.size(); ++u)
         if (m.textures[u] >= s_.textures.size())
-          fail(at(f + ".textures", u), "texture " + n(m.textures[u]) + " does not exist (" + n(s_.textures.size()) + " textures)");
+          fail(at(f + ".textures", u),
+               "texture " + n(m.textures[u]) + " does not exist (" + n(s_.textures.size()) + " textures)");
       for (float c : m.factor)
         if (!std::isfinite(c)) fail(f + ".factor", num(c) + " is not finite");
       if (!std::isfinite(m.alphaCutoff)) fail(f + ".alpha_cutoff", num(m.alphaCutoff) + " is not finite");
@@ -155,14 +164,16 @@ class Validator {
   // A batched mesh's place in its output batch; its TAM entries are checked in batches().
   void batchedMesh(const TabMesh& m, const std::string& f) const {
     if (m.textures.empty()) fail(f + ".textures", "none on a batched mesh");
-    if (m.alphaMode == AlphaMode::Blend) fail(f + ".alpha_mode", "BLEND on a batched mesh (BLEND meshes stay unbatched)");
+    if (m.alphaMode == AlphaMode::Blend)
+      fail(f + ".alpha_mode", "BLEND on a batched mesh (BLEND meshes stay unbatched)");
     if (m.outputBatch >= s_.batches.size())
       fail(f + ".output_batch", n(m.outputBatch) + " does not exist (" + n(s_.batches.size()) + " output batches)");
-    if (m.tamIndex >= kMaxTamIndex) fail(f + ".tam_index", n(m.tamIndex) + " is not below 2^24 (exact in a float texcoord)");
+    if (m.tamIndex >= kMaxTamIndex)
+      fail(f + ".tam_index", n(m.tamIndex) + " is not below 2^24 (exact in a float texcoord)");
     const uint64_t tam = s_.batches[m.outputBatch].tam.size();
     if (uint64_t(m.tamIndex) + m.textures.size() > tam)
-      fail(f + ".tam_index", n(m.tamIndex) + " + " + n(m.textures.size()) + " units runs past batch " + n(m.outputBatch) +
-                                 "'s " + n(tam) + " TAM entries");
+      fail(f + ".tam_index", n(m.tamIndex) + " + " + n(m.textures.size()) + " units runs past batch " +
+                                 n(m.outputBatch) + "'s " + n(tam) + " TAM entries");
   }
 
   void batches() const {
@@ -174,8 +185,10 @@ class Validator {
         fail(f + ".arrays", n(ob.arrays.size()) + " arrays, over params.a_max = " + n(s_.params.aMax));
       for (size_t k = 0; k < ob.arrays.size(); ++k)
         if (ob.arrays[k] >= s_.arrays.size())
-          fail(at(f + ".arrays", k), "array " + n(ob.arrays[k]) + " does not exist (" + n(s_.arrays.size()) + " arrays)");
-      if (ob.tam.size() > kMaxTamIndex) fail(f + ".tam", n(ob.tam.size()) + " entries, over 2^24 (i_TAM must be exact in a float)");
+          fail(at(f + ".arrays", k),
+               "array " + n(ob.arrays[k]) + " does not exist (" + n(s_.arrays.size()) + " arrays)");
+      if (ob.tam.size() > kMaxTamIndex)
+        fail(f + ".tam", n(ob.tam.size()) + " entries, over 2^24 (i_TAM must be exact in a float)");
       for (size_t k = 0; k < ob.tam.size(); ++k) {
         const TamEntry& e = ob.tam[k];
         const std::string tf = at(f + ".tam", k);
@@ -200,9 +213,9 @@ class Validator {
         const TamEntry& e = ob.tam[m.tamIndex + u];
         const uint32_t t = s_.arrays[ob.arrays[e.array]].layers[e.layer];
         if (t != m.textures[u])
-          fail(at("meshes", i) + ".tam_index",
-               "unit " + n(u) + "'s entry batches[" + n(m.outputBatch) + "].tam[" + n(m.tamIndex + u) +
-                   "] holds texture " + n(t) + ", but the mesh uses texture " + n(m.textures[u]));
+          fail(at("meshes", i) + ".tam_index", "unit " + n(u) + "'s entry batches[" + n(m.outputBatch) + "].tam[" +
+                                                   n(m.tamIndex + u) + "] holds texture " + n(t) +
+                                                   ", but the mesh uses texture " + n(m.textures[u]));
       }
     }
   }
@@ -210,18 +223,21 @@ class Validator {
   void geometry(const GeometryBatch& g, size_t b, const std::string& f, uint64_t& nextMesh) const {
     if (g.meshCount == 0) fail(f + ".mesh_count", "0 (a geometry batch draws at least one mesh)");
     if (g.firstMesh != nextMesh)
-      fail(f + ".first_mesh", n(g.firstMesh) + ", expected " + n(nextMesh) + " (where the previous geometry batch ends)");
+      fail(f + ".first_mesh",
+           n(g.firstMesh) + ", expected " + n(nextMesh) + " (where the previous geometry batch ends)");
     if (uint64_t(g.firstMesh) + g.meshCount > batched_)
-      fail(f + ".mesh_count", "meshes [" + n(g.firstMesh) + ", +" + n(g.meshCount) + ") run past the " + n(batched_) +
-                                  " batched meshes");
+      fail(f + ".mesh_count",
+           "meshes [" + n(g.firstMesh) + ", +" + n(g.meshCount) + ") run past the " + n(batched_) + " batched meshes");
     uint64_t vertices = 0;
     for (uint32_t i = g.firstMesh; i < g.firstMesh + g.meshCount; ++i) {
       if (s_.meshes[i].outputBatch != b)
-        fail(f + ".first_mesh", "mesh " + n(i) + " belongs to output batch " + n(s_.meshes[i].outputBatch) + ", not " + n(b));
+        fail(f + ".first_mesh",
+             "mesh " + n(i) + " belongs to output batch " + n(s_.meshes[i].outputBatch) + ", not " + n(b));
       vertices += s_.meshes[i].vertexCount;
     }
     if (g.firstVertex != s_.meshes[g.firstMesh].firstVertex)
-      fail(f + ".first_vertex", n(g.firstVertex) + ", but its first mesh starts at " + n(s_.meshes[g.firstMesh].firstVertex));
+      fail(f + ".first_vertex",
+           n(g.firstVertex) + ", but its first mesh starts at " + n(s_.meshes[g.firstMesh].firstVertex));
     if (g.vertexCount != vertices) fail(f + ".vertex_count", n(g.vertexCount) + ", but its meshes hold " + n(vertices));
     if (g.vertexCount > s_.params.bMax && g.meshCount > 1)
       fail(f + ".vertex_count", n(g.vertexCount) + " vertices in " + n(g.meshCount) + " meshes, over params.b_max = " +

@@ -401,7 +401,7 @@ def tab_seeds(out):
     empty = [struct.pack("<III", 1 << 20, 256, 8) + tab_string("") + bytes(24)] + [struct.pack("<I", 0)] * 6
     empty[2] = b""  # no textures, no texels
     write(os.path.join(out, "empty-scene.tab"), tab_file(empty))
-    write(os.path.join(out, "bad-truncated-in-texels.tab"), quad[:456 + 60])
+    write(os.path.join(out, "bad-truncated-in-textures.tab"), quad[:456 + 60])
     write(os.path.join(out, "bad-tam-layer-outside-its-array.tab"), tab_file(tab_one_quad(tam_layer=1)))
 
 

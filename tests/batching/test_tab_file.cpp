@@ -108,7 +108,8 @@ TabScene handMadeScene() {
   s.bounds = {1e30f, 1e30f, 1e30f, -1e30f, -1e30f, -1e30f};
   for (const Vertex& v : s.vertices) {
     const float p[3] = {v.x, v.y, v.z};
-    for (int k = 0; k < 3; ++k) s.bounds[k] = std::min(s.bounds[k], p[k]), s.bounds[k + 3] = std::max(s.bounds[k + 3], p[k]);
+    for (int k = 0; k < 3; ++k)
+      s.bounds[k] = std::min(s.bounds[k], p[k]), s.bounds[k + 3] = std::max(s.bounds[k + 3], p[k]);
   }
   return s;
 }
@@ -373,7 +374,8 @@ TEST(TabFile, EachBrokenRuleIsRejectedNamingItsField) {
       {[](TabScene& s) { s.params.aMax = 1; }, "batches[0].arrays: 2 arrays, over params.a_max = 1"},
       {[](TabScene& s) { s.bounds[4] = nan; }, "bounds: nan is not finite"},
       {[](TabScene& s) { s.bounds[3] = 0.5f; }, "vertices[1]: (1, -3, 0.25) is outside the scene's bounds"},
-      {[](TabScene& s) { s.textures[1].levels.pop_back(); }, "textures[1].levels: 2, but a full mip chain of 4 x 4 has 3 levels"},
+      {[](TabScene& s) { s.textures[1].levels.pop_back(); },
+       "textures[1].levels: 2, but a full mip chain of 4 x 4 has 3 levels"},
       {[](TabScene& s) { s.textures[1].levels[1].pop_back(); }, "texels section"},
       {[](TabScene& s) { s.textures[2].width = 0; }, "textures[2].size: 0 x 1 is outside [1, 16384] per axis"},
       {[](TabScene& s) { s.textures[2].wrapT = WrapMode(3); }, "textures[2].wrap_t: 3 is not a value in [0, 2]"},
@@ -382,7 +384,8 @@ TEST(TabFile, EachBrokenRuleIsRejectedNamingItsField) {
       {[](TabScene& s) { s.batches[1].tam[0].factor[2] = nan; }, "batches[1].tam[0].factor: nan is not finite"},
       {[](TabScene& s) { s.batches[0].tam[1].layer = 0; },
        "meshes[1].tam_index: unit 0's entry batches[0].tam[1] holds texture 0, but the mesh uses texture 1"},
-      {[](TabScene& s) { s.meshes[1].tamIndex = 2; }, "meshes[1].tam_index: 2 + 2 units runs past batch 0's 3 TAM entries"},
+      {[](TabScene& s) { s.meshes[1].tamIndex = 2; },
+       "meshes[1].tam_index: 2 + 2 units runs past batch 0's 3 TAM entries"},
       {[](TabScene& s) { s.meshes[2].tamIndex = 1u << 24; }, "meshes[2].tam_index: 16777216 is not below 2^24"},
       {[](TabScene& s) { s.meshes[2].outputBatch = 5; }, "meshes[2].output_batch: 5 does not exist (2 output batches)"},
       {[](TabScene& s) { s.meshes[3].firstVertex = 13; }, "meshes[3].first_vertex: 13, expected 12"},
@@ -392,17 +395,25 @@ TEST(TabFile, EachBrokenRuleIsRejectedNamingItsField) {
        "meshes[4].kind: 1 after a mesh of kind 2"},
       {[](TabScene& s) { s.meshes[4].textures = {4}; }, "meshes[4].textures[0]: texture 4 does not exist"},
       {[](TabScene& s) { s.meshes[0].alphaMode = AlphaMode::Blend; }, "meshes[0].alpha_mode: BLEND on a batched mesh"},
-      {[](TabScene& s) { s.meshes[1].kind = MeshKind::Untextured; }, "meshes[1].textures: 2 textures on an untextured mesh"},
-      {[](TabScene& s) { s.batches[0].geometry[0].vertexCount = 8; }, "batches[0].geometry[0].vertex_count: 8, but its meshes hold 9"},
-      {[](TabScene& s) { s.batches[0].geometry[0].firstVertex = 1; }, "batches[0].geometry[0].first_vertex: 1, but its first mesh starts at 0"},
+      {[](TabScene& s) { s.meshes[1].kind = MeshKind::Untextured; },
+       "meshes[1].textures: 2 textures on an untextured mesh"},
+      {[](TabScene& s) { s.batches[0].geometry[0].vertexCount = 8; },
+       "batches[0].geometry[0].vertex_count: 8, but its meshes hold 9"},
+      {[](TabScene& s) { s.batches[0].geometry[0].firstVertex = 1; },
+       "batches[0].geometry[0].first_vertex: 1, but its first mesh starts at 0"},
       {[](TabScene& s) { s.batches[1].geometry[0].firstMesh = 1; }, "batches[1].geometry[0].first_mesh: 1, expected 2"},
-      {[](TabScene& s) { s.batches[1].geometry[0].meshCount = 2; }, "batches[1].geometry[0].mesh_count: meshes [2, +2) run past the 3 batched meshes"},
-      {[](TabScene& s) { s.batches[1].geometry.clear(); }, "batches: the geometry batches hold 2 meshes, but 3 are batched"},
-      {[](TabScene& s) { s.params.bMax = 8; }, "batches[0].geometry[0].vertex_count: 9 vertices in 2 meshes, over params.b_max = 8"},
-      {[](TabScene& s) { s.meshes[2].outputBatch = 0; }, "batches[1].geometry[0].first_mesh: mesh 2 belongs to output batch 0, not 1"},
+      {[](TabScene& s) { s.batches[1].geometry[0].meshCount = 2; },
+       "batches[1].geometry[0].mesh_count: meshes [2, +2) run past the 3 batched meshes"},
+      {[](TabScene& s) { s.batches[1].geometry.clear(); },
+       "batches: the geometry batches hold 2 meshes, but 3 are batched"},
+      {[](TabScene& s) { s.params.bMax = 8; },
+       "batches[0].geometry[0].vertex_count: 9 vertices in 2 meshes, over params.b_max = 8"},
+      {[](TabScene& s) { s.meshes[2].outputBatch = 0; },
+       "batches[1].geometry[0].first_mesh: mesh 2 belongs to output batch 0, not 1"},
       {[](TabScene& s) { s.vertices[4].index = 1.5f; }, "vertices[4].index: 1.5 is not an integer in [0, 2^24)"},
       {[](TabScene& s) { s.vertices[4].index = 0.0f; }, "vertices[4].index: 0, but mesh 1 has i_TAM 1"},
-      {[](TabScene& s) { s.vertices[16].index = 1.0f; }, "vertices[16].index: 1, but mesh 4 has i_TAM 0 (unbatched meshes carry 0)"},
+      {[](TabScene& s) { s.vertices[16].index = 1.0f; },
+       "vertices[16].index: 1, but mesh 4 has i_TAM 0 (unbatched meshes carry 0)"},
       {[](TabScene& s) { s.vertices[5].s = std::numeric_limits<float>::infinity(); }, "vertices[5]: inf is not finite"},
       {[](TabScene& s) { s.vertices.push_back(s.vertices.back()); }, "meshes: cover 18 of the 19 vertices"},
   };
