@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Recomputes the checksums of .tframe and .mta files in place, as the fuzz targets do before decoding.
+"""Recomputes the checksums of .tframe, .mta and .tab files in place, as the fuzz targets do before decoding.
 
 Usage: python3 fuzz/fix_checksums.py FILE...
 
@@ -11,6 +11,8 @@ reproduces through the CLI as well; the targets leave a file with correct checks
 - .tframe (docs/tframe-format.md): SHA-256 of bytes 72.. into bytes 40..71.
 - .mta (docs/mta-format.md): file size (16..23), metadata size (32..39, from the metadata offset at
   24..31), metadata SHA-256 (40..71), header SHA-256 of bytes 0..95 (96..127).
+- .tab (docs/tab-format.md): file size (24..31), the SHA-256 of each section the section table places
+  inside the file, header SHA-256 of bytes 0..423 (424..455).
 Files that are neither (no magic) are left alone. Standard library only.
 """
 import hashlib
@@ -32,6 +34,15 @@ def fix(data):
             data[40:72] = hashlib.sha256(bytes(data[meta_offset:])).digest()
         data[96:128] = hashlib.sha256(bytes(data[:96])).digest()
         return "mta"
+    if len(data) >= 456 and data[:8] == b"TESSTAB\x1a":
+        size = len(data)
+        struct.pack_into("<Q", data, 24, size)
+        for k in range(7):
+            offset, length = struct.unpack_from("<QQ", data, 32 + 56 * k + 8)
+            if offset <= size and length <= size - offset:
+                data[32 + 56 * k + 24:32 + 56 * k + 56] = hashlib.sha256(bytes(data[offset:offset + length])).digest()
+        data[424:456] = hashlib.sha256(bytes(data[:424])).digest()
+        return "tab"
     return None
 
 
@@ -44,7 +55,7 @@ def main():
         before = bytes(data)
         kind = fix(data)
         if kind is None:
-            print(f"{path}: not a .tframe or .mta file, left alone")
+            print(f"{path}: not a .tframe, .mta or .tab file, left alone")
             continue
         if bytes(data) == before:
             print(f"{path}: {kind}, checksums already correct")

@@ -6,9 +6,10 @@ Usage: python3 fuzz/make_seeds.py build/tessera [fuzz/corpus]
 Every seed is small (well under 64 KiB) and most are valid inputs, so that the fuzzer starts from the
 parsers' deep paths; a few are malformed on purpose. The .tframe seeds are recorded from built-in scenes
 and the .mta seeds are built from tiny scenes with the given `tessera` binary; everything else is written
-here. The output is deterministic: running it again rewrites the same bytes (the recorded frames and the
-paging files are reproducible by the project's own rules). Seeds that are in the corpus but not written
-here (minimised fuzzer finds, fixed crashers) are left alone.
+here (the .tab seeds by an encoder of docs/tab-format.md of this script's own, independent of
+batching/tab_file.cpp). The output is deterministic: running it again rewrites the same bytes (the
+recorded frames and the paging files are reproducible by the project's own rules). Seeds that are in the
+corpus but not written here (minimised fuzzer finds, fixed crashers) are left alone.
 Standard library only.
 """
 import base64
@@ -359,6 +360,51 @@ far 5000
     write(os.path.join(out, "bad-eye-equals-target.path"), "tessera-camera-path 1\n1 2 3 1 2 3\n")
 
 
+# --- tab ----------------------------------------------------------------------------------------------
+def tab_file(sections):
+    """A .tab file (docs/tab-format.md) around the seven section payloads, with valid checksums."""
+    offset, table = 456, b""
+    for kind, payload in enumerate(sections, 1):
+        table += struct.pack("<IIQQ", kind, 0, offset, len(payload)) + hashlib.sha256(payload).digest()
+        offset += len(payload)
+    head = b"TESSTAB\x1a" + struct.pack("<IIIIQ", 1, 456, 7, 0, offset) + table
+    return head + hashlib.sha256(head).digest() + b"".join(sections)
+
+
+def tab_string(text):
+    return struct.pack("<I", len(text)) + text.encode()
+
+
+def tab_one_quad(tam_layer=0):
+    """One 2x2 REPEAT texture in one array, one output batch drawing a two-triangle batched mesh, then an
+    untextured triangle."""
+    meta = struct.pack("<III", 1 << 20, 256, 8) + tab_string("quad.glb") + struct.pack("<6f", 0, 0, 0, 1, 1, 0)
+    textures = struct.pack("<I", 1) + tab_string("q.png") + struct.pack("<IIBBBB", 2, 2, 0, 0, 0, 2)
+    texels = bytes(range(16)) + bytes([200, 100, 50, 255])
+    arrays = struct.pack("<I", 1) + struct.pack("<IIBBB", 2, 2, 0, 0, 0) + struct.pack("<II", 1, 0)
+    batches = (struct.pack("<I", 1) + struct.pack("<II", 1, 0) + struct.pack("<I", 1) +
+               struct.pack("<II4ffB", 0, tam_layer, 1, 1, 1, 1, 0, 1) + struct.pack("<I", 1) +
+               struct.pack("<IIII", 0, 6, 0, 1))
+    meshes = struct.pack("<I", 2)
+    meshes += tab_string("quad") + struct.pack("<BIII", 0, 0, 0, 6) + struct.pack("<II", 1, 0)
+    meshes += struct.pack("<4fBfII", 1, 1, 1, 1, 0, 0.5, 0, 0)
+    meshes += tab_string("roof") + struct.pack("<BIII", 1, 1, 6, 3) + struct.pack("<I", 0)
+    meshes += struct.pack("<4fBfII", 0.5, 0.5, 0.5, 1, 0, 0.5, 0, 0)
+    corners = [(0, 0), (1, 0), (1, 1), (0, 0), (1, 1), (0, 1), (0, 0), (1, 0), (0, 1)]
+    vertices = struct.pack("<I", 9) + b"".join(struct.pack("<6f", x, y, 0, x, y, 0) for x, y in corners)
+    return [meta, textures, texels, arrays, batches, meshes, vertices]
+
+
+def tab_seeds(out):
+    quad = tab_file(tab_one_quad())
+    write(os.path.join(out, "one-quad-and-a-roof.tab"), quad)
+    empty = [struct.pack("<III", 1 << 20, 256, 8) + tab_string("") + bytes(24)] + [struct.pack("<I", 0)] * 6
+    empty[2] = b""  # no textures, no texels
+    write(os.path.join(out, "empty-scene.tab"), tab_file(empty))
+    write(os.path.join(out, "bad-truncated-in-textures.tab"), quad[:456 + 60])
+    write(os.path.join(out, "bad-tam-layer-outside-its-array.tab"), tab_file(tab_one_quad(tam_layer=1)))
+
+
 def main():
     if len(sys.argv) < 2:
         sys.exit(__doc__)
@@ -371,6 +417,7 @@ def main():
     obj_seeds(os.path.join(corpus, "obj"))
     ac3d_seeds(os.path.join(corpus, "ac3d"))
     camera_path_seeds(os.path.join(corpus, "camera_path"))
+    tab_seeds(os.path.join(corpus, "tab"))
     for target in sorted(os.listdir(corpus)):
         d = os.path.join(corpus, target)
         for name in sorted(os.listdir(d)):
