@@ -4,8 +4,11 @@
 
 #include <set>
 
+#include <tbb/global_control.h>
+
 #include "batching/batcher.h"
 #include "batching/input_batches.h"
+#include "batching/tab_file.h"
 #include "batching/tab_stats.h"
 #include "model/model.h"
 
@@ -59,6 +62,26 @@ TEST(TabRailway, OneLayerPerArrayMakesOneArrayPerTexture) {
   runAlgorithm1(s, TabParams{1u << 20, 1, 8});
   EXPECT_EQ(s.arrays.size(), 28u);
   EXPECT_EQ(s.batches.size(), 4u);  // ceil(28 / 8)
+}
+
+}  // namespace
+}  // namespace tessera::batching
+
+namespace tessera::batching {
+namespace {
+
+TEST(TabBatcher, SameInputGivesTheSameBytes) {
+  // The whole build — decoding in parallel, mip chains, sort, Algorithm 1, encoding — at 1 thread and at
+  // the default parallelism.
+  auto build = [](size_t threads) {
+    tbb::global_control c(tbb::global_control::max_allowed_parallelism, threads);
+    TabScene s = prepareInput(model::loadModel(TESSERA_SOURCE_DIR "/data/railway.glb"));
+    runAlgorithm1(s, TabParams{});
+    return encodeTabFile(s);
+  };
+  const std::vector<uint8_t> one = build(1), many = build(8);
+  EXPECT_EQ(one.size(), many.size());
+  EXPECT_TRUE(one == many);
 }
 
 }  // namespace

@@ -101,10 +101,12 @@ void addBuild(CLI::App* tab) {
 
 void addInfo(CLI::App* tab) {
   auto path = std::make_shared<std::string>();
+  auto limits = std::make_shared<ResourceLimits>();
   auto* info = tab->add_subcommand("info", "Validate a .tab file and print Table 1's columns as JSON");
   info->add_option("file", *path, "A .tab file")->required();
-  info->callback([path] {
-    const batching::TabScene s = batching::readTabFile(*path);
+  addModelBudgetOptions(info, *limits);
+  info->callback([path, limits] {
+    const batching::TabScene s = batching::readTabFile(*path, *limits);
     nlohmann::json j = batching::tableOneJson(s);
     j["file"] = {{"path", *path}, {"bytes", uint64_t(fs::file_size(*path))}};
     std::printf("%s\n", j.dump(2).c_str());
@@ -131,6 +133,7 @@ void addRender(CLI::App* tab) {
   render->add_option("--save-every", a->saveEvery, "Write PNG and .tframe of every K-th frame and the last (0 = none)")
       ->capture_default_str();
   render->add_option("-o,--output", a->out, "Output directory")->required();
+  addModelBudgetOptions(render, a->limits);
   render->add_flag("--quiet", a->quiet, "No progress on stderr");
   render->callback([a] { std::printf("%s\n", runTabRender(*a).dump(2).c_str()); });
 }

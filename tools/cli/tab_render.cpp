@@ -97,7 +97,7 @@ nlohmann::json runTabRender(const TabRenderArgs& a) {
   if (a.baseline && a.both) throw Error("tab render: --baseline and --both exclude each other");
   const auto [w, h] = parseSize(a.size, "--size");
   prepareOutputDirectory(a.out, "-o");
-  const batching::TabScene s = batching::readTabFile(a.input);
+  const batching::TabScene s = batching::readTabFile(a.input, a.limits);
   const mta::CameraPath path = choosePath(a, s);
   std::vector<Variant> variants;
   if (a.both) variants = {Variant::Baseline, Variant::Batched};

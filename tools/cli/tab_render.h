@@ -7,6 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "base/resource_limits.h"
+
 namespace tessera::cli {
 
 struct TabRenderArgs {
@@ -19,6 +21,7 @@ struct TabRenderArgs {
   uint32_t saveEvery = 10;
   bool baseline = false, both = false;
   bool quiet = false;
+  ResourceLimits limits;  // the .tab reader's texture and vertex budgets (--model-budget-*)
 };
 
 // Writes under a.out: <variant>_NNNN.png and .tframe for saved frames (and diff_NNNN.png with --both),
