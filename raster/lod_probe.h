@@ -42,6 +42,7 @@ struct LodPixel {
   uint8_t count = 0;  // lookups the fragment made (may exceed kLodLookupsPerPixel; the first ones are kept)
   std::array<LodLookup, kLodLookupsPerPixel> look{};
   int recorded() const { return count < kLodLookupsPerPixel ? count : kLodLookupsPerPixel; }
+  bool operator==(const LodPixel&) const = default;
 };
 
 // The probe's result for one image: pixels row by row, row 0 at the bottom (GL window coordinates,
