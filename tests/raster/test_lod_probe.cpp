@@ -96,6 +96,13 @@ TEST(LodProbe, AFragmentFailingTheDepthTestLeavesTheVisibleRecord) {
   expectEveryQuadPixel(lodMap(quadsFrame({{64, 0.5f}, {128, -0.5f}}, true), 1), 64, 256, 4.0);
 }
 
+TEST(LodProbe, AColourClearAfterADrawLeavesNoLookupBehind) {
+  CommandList cl = quadsFrame({{64, 0.0f}}, false);
+  cl.clearColor(0, {0, 0, 0, 1});
+  const LodMap m = lodMap(cl, 2);
+  for (const LodPixel& px : m.pixels) ASSERT_EQ(px.count, 0);
+}
+
 TEST(LodProbe, ProbingChangesNeitherTheImageNorTheCounters) {
   const CommandList list = scenes::build("city_block", 160, 120);
   const testing::Rendered plain = testing::renderList(list, 2);
