@@ -102,6 +102,8 @@ struct CpuBackend::Impl {
   PipelineStats stats;
   std::vector<SetupSink> sinks;  // reused across draws
   tbb::enumerable_thread_specific<RastScratch> scratch;
+  // LOD probe: per (colour attachment 0, level), one map per layer.
+  std::map<std::pair<const TextureData*, uint32_t>, std::vector<LodMap>> lodMaps;
 
   void resize(ResourceId id) {
     const size_t n = size_t(id) + 1;
@@ -154,6 +156,16 @@ struct CpuBackend::Impl {
     targetBound = true;
     scene.begin(resolveTarget(t));
     scene.provenance = options.provenance;
+    scene.lod = nullptr;
+    if (options.lodProbe && !options.provenance && scene.target.color[0]) {
+      const TextureData* c = scene.target.color[0];
+      std::vector<LodMap>& maps = lodMaps[{c, t.level}];
+      const int32_t w = scene.target.width, h = scene.target.height;
+      if (maps.size() != c->desc.layers || maps[0].width != w || maps[0].height != h) {
+        maps.assign(c->desc.layers, LodMap{w, h, std::vector<LodPixel>(size_t(w) * size_t(h))});
+      }
+      scene.lod = &maps;
+    }
     scene.edgeMarginSub = tolerance::edgeMarginSub(options.otherSubpixelBits);
     scene.vertexSnapPx = tolerance::vertexSnapPx(options.otherSubpixelBits);
     if (options.provenance)
@@ -461,5 +473,12 @@ std::vector<PresentedImage> CpuBackend::presented() const {
 }
 
 const PipelineStats& CpuBackend::stats() const { return impl_->stats; }
+
+const LodMap* CpuBackend::lodMap(const PresentedImage& p) const {
+  if (p.texture >= impl_->textures.size() || !impl_->textures[p.texture]) return nullptr;
+  const auto it = impl_->lodMaps.find({impl_->textures[p.texture].get(), p.level});
+  if (it == impl_->lodMaps.end() || p.layer >= it->second.size()) return nullptr;
+  return &it->second[p.layer];
+}
 
 }  // namespace tessera

@@ -16,6 +16,7 @@
 
 #include "base/resource_limits.h"
 #include "raster/command_list.h"
+#include "raster/lod_probe.h"
 #include "raster/pipeline.h"
 #include "raster/texture.h"
 
@@ -28,6 +29,10 @@ struct RenderOptions {
   // Provenance: GL_SUBPIXEL_BITS of the implementation that will be judged against the intervals
   // (tolerance::edgeMarginSub). GL's minimum, 4, when it is not known.
   int otherSubpixelBits = 4;
+  // Record, per pixel of each colour attachment 0 rendered to, the LOD of the lookups of the fragment
+  // stored there (raster/lod_probe.h; lodMap()). Slower (one quad per program call) but the images,
+  // counters and every other output are the same bytes. Ignored in provenance mode.
+  bool lodProbe = false;
 };
 
 // One presented image: attachment `attachment` of the final target at (level, layer).
@@ -51,6 +56,9 @@ class CpuBackend {
   const TextureData* texture(ResourceId id) const;
   std::vector<PresentedImage> presented() const;
   const detail::PipelineStats& stats() const;
+  // With RenderOptions::lodProbe: the LOD map of presented image `p` (its texture, level and layer);
+  // nullptr without the probe or if nothing was rendered to it.
+  const LodMap* lodMap(const PresentedImage& p) const;
 
  private:
   struct Impl;

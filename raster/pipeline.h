@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "raster/command_list.h"
+#include "raster/lod_probe.h"
 #include "raster/program.h"
 #include "raster/texture.h"
 
@@ -104,6 +105,8 @@ struct Scene {
   std::vector<ClearCmd> clears;
   int32_t tilesX = 0, tilesY = 0;
   std::vector<std::vector<TileCmd>> bins;
+  // LOD probe (lod_probe.h): the maps of the target's colour attachment 0, one per layer, or nullptr.
+  std::vector<LodMap>* lod = nullptr;
 
   void begin(const TargetView& t);
   bool empty() const { return tris.empty() && clears.empty(); }

@@ -82,6 +82,17 @@ void runClear(const Scene& scene, const ClearCmd& c, TextureData* tex, const Til
     }
 }
 
+// The LOD probe: a colour clear of attachment 0 leaves no lookup behind in the pixels it covers.
+void clearLod(const Scene& scene, const ClearCmd& c, const TileRect& tile) {
+  const uint32_t l0 = scene.target.layer == kLayered ? 0 : scene.target.layer;
+  const uint32_t l1 = scene.target.layer == kLayered ? uint32_t(scene.lod->size()) : l0 + 1;
+  const int32_t x0 = std::max(tile.x0, c.rect.x), x1 = std::min(tile.x1, c.rect.x + c.rect.w - 1);
+  const int32_t y0 = std::max(tile.y0, c.rect.y), y1 = std::min(tile.y1, c.rect.y + c.rect.h - 1);
+  for (uint32_t l = l0; l < l1 && l < scene.lod->size(); ++l)
+    for (int32_t y = y0; y <= y1; ++y)
+      for (int32_t x = x0; x <= x1; ++x) (*scene.lod)[l].at(x, y) = LodPixel{};
+}
+
 class TriangleRasterizer {
  public:
   TriangleRasterizer(const Scene& scene, const TriSetup& t, RastScratch& s, PipelineStats& stats)
@@ -157,13 +168,15 @@ class TriangleRasterizer {
     }
     s_.live[n] = live;
     s_.outs[n].discard = 0;
-    if (++count_ == RastScratch::kBatch) flush();
+    // The LOD probe shades one quad per call, so the sampler's log holds exactly that quad's lookups.
+    if (++count_ == RastScratch::kBatch || scene_.lod) flush();
   }
 
   void flush() {
     if (!count_) return;
     QuadBatch batch{s_.quads.data(), s_.outs.data(), count_, {}, t_.primitiveId, t_.layer, t_.frontFacing};
     std::memcpy(batch.flat, t_.flat, sizeof batch.flat);
+    if (scene_.lod) s_.lodLog.count = 0;
     ds_.program->shadeQuads(batch, ds_.ctx);
     const TargetView& tv = scene_.target;
     const bool depthWrite = ds_.depth.test && ds_.depth.write && tv.depth;
@@ -186,8 +199,29 @@ class TriangleRasterizer {
         }
         ++stats_.pixels_written;
       }
+      if (scene_.lod) recordLod(q, keep);
     }
     count_ = 0;
+  }
+
+  // The LOD probe: the kept pixels of the quad just shaded take its lookups (the last write wins).
+  void recordLod(const Quad& q, uint8_t keep) {
+    LodMap& map = (*scene_.lod)[t_.layer < scene_.lod->size() ? t_.layer : 0];
+    const LodQuadLog& log = s_.lodLog;
+    const int n = std::min(log.count, kLodLookupsPerPixel);
+    const uintptr_t base = reinterpret_cast<uintptr_t>(ds_.ctx.units.data());
+    for (int p = 0; p < 4; ++p) {
+      if (!(keep >> p & 1)) continue;
+      LodPixel& px = map.at(q.x + (p & 1), q.y + (p >> 1));
+      px.count = uint8_t(std::min(log.count, 255));
+      for (int i = 0; i < n; ++i) {
+        const LodQuadLog::Entry& e = log.e[size_t(i)];
+        px.look[size_t(i)] = e.look;
+        const uintptr_t off = reinterpret_cast<uintptr_t>(e.unit) - base;
+        px.look[size_t(i)].unit = uint8_t(off / sizeof(TexUnit) < size_t(kMaxTextureUnits) ? off / sizeof(TexUnit) : 255);
+      }
+      for (int i = n; i < kLodLookupsPerPixel; ++i) px.look[size_t(i)] = LodLookup{};
+    }
   }
 
   const Scene& scene_;
@@ -203,6 +237,7 @@ class TriangleRasterizer {
 void rasterizeTile(const Scene& scene, size_t tileIndex, RastScratch& scratch, PipelineStats& stats) {
   const auto& bin = scene.bins[tileIndex];
   if (bin.empty()) return;
+  if (scene.lod) setLodQuadLog(&scratch.lodLog);
   ++stats.tiles_rasterized;
   const int32_t tx = int32_t(tileIndex % size_t(scene.tilesX)), ty = int32_t(tileIndex / size_t(scene.tilesX));
   const TileRect tile{tx * kTileSize, ty * kTileSize, std::min((tx + 1) * kTileSize, scene.target.width) - 1,
@@ -221,6 +256,7 @@ void rasterizeTile(const Scene& scene, size_t tileIndex, RastScratch& scratch, P
       case TileOp::ClearColor: {
         const ClearCmd& c = scene.clears[cmd.index];
         runClear(scene, c, scene.target.color[c.attachment], tile);
+        if (scene.lod && c.attachment == 0) clearLod(scene, c, tile);
         break;
       }
       case TileOp::ClearDepth:
@@ -228,6 +264,7 @@ void rasterizeTile(const Scene& scene, size_t tileIndex, RastScratch& scratch, P
         break;
     }
   }
+  if (scene.lod) setLodQuadLog(nullptr);  // vertex stages on this thread must not append to it
 }
 
 }  // namespace tessera::detail

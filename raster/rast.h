@@ -23,6 +23,7 @@ struct RastScratch {
   std::vector<QuadOut> outs = std::vector<QuadOut>(kBatch);
   std::vector<uint8_t> live = std::vector<uint8_t>(kBatch);  // covered and depth-passed pixels
   std::vector<std::array<float, 4>> depth = std::vector<std::array<float, 4>>(kBatch);
+  LodQuadLog lodLog;  // LOD probe: the lookups of the quad being shaded (Scene::lod)
 };
 
 void rasterizeTile(const Scene& scene, size_t tileIndex, RastScratch& scratch, PipelineStats& stats);

@@ -18,6 +18,7 @@
 #include <cstring>
 #include <type_traits>
 
+#include "raster/lod_probe.h"
 #include "raster/provenance.h"
 #include "raster/sample_detail.h"
 
@@ -449,11 +450,39 @@ uint32_t blendedChannels(const TexUnit& u, const Plan& p, float s, float t, uint
 
 namespace {
 
+// The LOD probe of the calling thread (raster/lod_probe.h); nullptr unless a probed render is running
+// on it. constinit: a plain TLS load, no initialisation wrapper, so the fast path pays one load and one
+// predictable branch per quad lookup.
+constinit thread_local LodQuadLog* t_lodLog = nullptr;
+
+// Appends one lookup to the probe. rho^2 is formed exactly as computeLambda forms it (same operands,
+// same order), so it is the value the lambda came from.
+void probeLookup(LodQuadLog& log, const TexUnit& u, double dudx, double dvdx, double dudy, double dvdy,
+                 int32_t lambda8, int levels, bool grad) {
+  const int i = log.count++;
+  if (i >= LodQuadLog::kCapacity) return;
+  LodQuadLog::Entry& e = log.e[size_t(i)];
+  e.unit = &u;
+  e.look = LodLookup{};
+  if (u.tex != nullptr) {
+    e.look.width = u.tex->desc.width;
+    e.look.height = u.tex->desc.height;
+    e.look.layers = u.tex->desc.layers;
+  }
+  const double rx = dudx * dudx + dvdx * dvdx;
+  const double ry = dudy * dudy + dvdy * dvdy;
+  e.look.rho2 = rx > ry ? rx : ry;
+  e.look.lambda8 = lambda8;
+  e.look.levels = uint8_t(levels);
+  e.look.grad = grad ? 1 : 0;
+}
+
 // Implicit-LOD quad lookup shared by the 2D and 2D-array forms (layers: per pixel, already selected).
 void sampleQuadImpl(const TexUnit& u, const float s[4], const float t[4], const uint32_t layers[4], float bias,
                     float out[4][4]) {
   if (!isComplete(u.tex, u.sampler.state)) {
     for (int i = 0; i < 4; ++i) writeIncomplete(out[i]);
+    if (LodQuadLog* log = t_lodLog) probeLookup(*log, u, 0.0, 0.0, 0.0, 0.0, 0, 0, false);
     return;
   }
   // GL 4.6 §8.14.1: u = s * w_base, v = t * h_base (the array layer is not part of rho).
@@ -466,6 +495,7 @@ void sampleQuadImpl(const TexUnit& u, const float s[4], const float t[4], const 
   const double dvdy = (double(t[2]) - double(t[0])) * H;
   const int32_t lambda8 = computeLambda(dudx, dvdx, dudy, dvdy, u.sampler, bias);
   const Plan p = makePlan(u, lambda8);
+  if (LodQuadLog* log = t_lodLog) probeLookup(*log, u, dudx, dvdx, dudy, dvdy, lambda8, p.levelCount, false);
   sampleN(u, p, 4, s, t, layers, out);
 }
 
@@ -475,6 +505,8 @@ inline bool intervalMode(const TexUnit& u) {
 }
 
 }  // namespace
+
+void setLodQuadLog(LodQuadLog* log) { t_lodLog = log; }
 
 void sampleAtLambda(const TexUnit& u, float s, float t, uint32_t layer, int32_t lambda8, float out[4]) {
   const Plan p = makePlan(u, lambda8);
@@ -502,6 +534,7 @@ void sampleGrad2DArray(const TexUnit& u, const float s[4], const float t[4], con
                        float dsdy, float dtdy, float out[4][4]) {
   if (!isComplete(u.tex, u.sampler.state)) {
     for (int i = 0; i < 4; ++i) writeIncomplete(out[i]);
+    if (LodQuadLog* log = t_lodLog) probeLookup(*log, u, 0.0, 0.0, 0.0, 0.0, 0, 0, true);
     return;
   }
   if (intervalMode(u)) {
@@ -517,6 +550,9 @@ void sampleGrad2DArray(const TexUnit& u, const float s[4], const float t[4], con
   const uint32_t l[4] = {selectLayer(r[0], d.layers), selectLayer(r[1], d.layers), selectLayer(r[2], d.layers),
                          selectLayer(r[3], d.layers)};
   const Plan p = makePlan(u, lambda8);
+  if (LodQuadLog* log = t_lodLog)
+    probeLookup(*log, u, double(dsdx) * W, double(dtdx) * H, double(dsdy) * W, double(dtdy) * H, lambda8,
+                p.levelCount, true);
   sampleN(u, p, 4, s, t, l, out);
 }
 

@@ -436,6 +436,35 @@ PY
     grep -q "layer_floor" m.err || fail "no progress on stderr"
     refused 2 "unknown mutant 'nope'" "$tessera" mutants --mutants nope
     ;;
+  texel_on_a_recorded_frame_and_its_comparison)
+    # Any .tframe: per-pixel lambda from the oracle's sampler; a frame compared with itself agrees everywhere,
+    # two different scenes of one size do not (exit 1), and the outputs of both modes are written.
+    "$tessera" render mip_tunnel --record tunnel.tframe -o tunnel.png > /dev/null
+    "$tessera" render texture_array --record array.tframe -o array.png > /dev/null
+    "$tessera" texel tunnel.tframe -o one --threads 2 > one.json
+    for f in texel.json lambda.png histogram.png lambda.i32; do [ -s "one/$f" ] || fail "texel did not write $f"; done
+    [ "$(json_field one/texel.json "['frames'][0]['pixels_with_lookup']")" -gt 10000 ] || fail "no lookups: $(cat one.json)"
+    [ "$(stat -c %s one/lambda.i32)" = $((256 * 256 * 4)) ] || fail "lambda.i32 is not 4 bytes per pixel"
+    "$tessera" texel tunnel.tframe --against tunnel.tframe -o self > self.json
+    [ "$(json_field self.json "['pixels_differing']")" = 0 ] || fail "a frame differs from itself: $(cat self.json)"
+    [ "$(json_field self.json "['identical_lambda']")" = True ] || fail "self comparison: $(cat self.json)"
+    [ -s self/lod_diff.png ] && [ -s self/lambda_against.png ] || fail "no difference map"
+    rc=0; "$tessera" texel tunnel.tframe --against array.tframe -o other > other.json || rc=$?
+    [ "$rc" = 1 ] || fail "different frames: exit status $rc, expected 1"
+    [ "$(json_field other.json "['pixels_differing']")" -gt 0 ] || fail "no differences: $(cat other.json)"
+    "$tessera" texel --help > help.txt
+    grep -q -- "--against" help.txt && grep -q "lambda.i32" help.txt || fail "--help does not explain --against"
+    ;;
+  texel_on_a_bad_frame_exits_2)
+    "$tessera" render mip_tunnel --record tunnel.tframe -o tunnel.png > /dev/null
+    "$tessera" render lod_levels --record small.tframe -o small.png > /dev/null
+    refused 2 "missing.tframe: not a readable file" "$tessera" texel missing.tframe -o r
+    head -c 200 tunnel.tframe > cut.tframe
+    refused 2 "cut.tframe" "$tessera" texel cut.tframe -o r
+    refused 2 "tunnel.tframe is 256x256 but small.tframe is 128x64" "$tessera" texel tunnel.tframe --against small.tframe -o r
+    refused 2 "only a .tframe input can be compared" "$tessera" texel tree.mta --against small.tframe -o r
+    [ ! -e r ] || fail "bad input left an output directory behind"
+    ;;
   *) fail "unknown case $case_name" ;;
 esac
 echo "ok: $case_name"

@@ -1,10 +1,12 @@
 // `tessera texel`: the texel-per-pixel analysis of an atlas tree over a camera path (mta/texel_ratio.h):
-// per-frame JSON, heat maps, frames and a histogram of pixels per texel (docs/mta-render.md).
+// per-frame JSON, heat maps, frames and a histogram of pixels per texel (docs/mta-render.md). A .tframe
+// input goes to runTexelFrame (cmd_texel_frame.cpp, docs/texel.md).
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 
+#include "base/error.h"
 #include "model/model.h"
 #include "mta/build.h"
 #include "mta/scene.h"
@@ -15,6 +17,7 @@
 #include "tools/cli/mta_path_run.h"
 #include "tools/cli/options.h"
 #include "tools/cli/output_directory.h"
+#include "tools/cli/texel_frame.h"
 
 namespace tessera::cli {
 
@@ -111,19 +114,47 @@ nlohmann::json runTexel(const PathRunArgs& a) {
 
 void addTexelCommand(CLI::App& app) {
   auto ta = std::make_shared<PathRunArgs>();
+  auto against = std::make_shared<std::string>();
   auto* texel = app.add_subcommand(
-      "texel", "Texel-per-pixel analysis over a camera path: per pixel, pixels per texel of the level sampled (analytic "
-               "Jacobian), heat maps, a histogram, and magnification_violations (atlas used although it magnifies beyond tau; "
-               "zero whenever every needed block is resident)");
-  texel->add_option("input", ta->input, "Paging file (.mta), or a model (glTF, OBJ, ...) whose tree is built first into OUT/tree.mta")
+      "texel",
+      "Texel-per-pixel analysis. (1) Of an atlas tree over a camera path: per pixel, pixels per texel of the level "
+      "sampled (analytic Jacobian), heat maps, a histogram, and magnification_violations (atlas used although it "
+      "magnifies beyond tau; zero whenever every needed block is resident). (2) Of a recorded frame (.tframe, e.g. from "
+      "`tessera render SCENE --record F.tframe`): the frame is replayed on the oracle with its LOD probe, which records "
+      "for each pixel the lookups of the fragment whose colour is stored (after depth test and discard): rho (GL 4.6 "
+      "8.14.1, texels of level 0) and lambda (8.8, after bias and clamps), as the sampler computed them. Writes "
+      "texel.json (pixels with a lookup, lambda and log2(rho) histograms, min/mean/max, counts per unit, per texture "
+      "size and per lookup count), lambda.png (heat map of the first lookup's lambda with a colour bar), histogram.png "
+      "and lambda.i32 (raw int32 per pixel, docs/texel.md). With --against B.tframe it also probes B (suffix _against) "
+      "and compares the frames pixel by pixel: lod_diff.png and the counts of differing pixels by reason "
+      "(only_in_a, only_in_b, lookup_count, completeness, texture_size, lambda); exit status 1 if any pixel differs, 0 "
+      "if lambda is identical everywhere, 2 for a missing, corrupt or invalid frame or frames of different sizes. "
+      "Path, memory and model options do not apply to a .tframe; --threads does (records never depend on it)");
+  texel->add_option("input", ta->input,
+                    "Paging file (.mta), a model (glTF, OBJ, ...) whose tree is built first into OUT/tree.mta, or a "
+                    "recorded frame (.tframe)")
       ->required();
+  texel->add_option("--against", *against,
+                    "With a .tframe input: a second frame of the same size to compare with, pixel by pixel (lambda and "
+                    "texture size of every lookup)");
   addPathRunOptions(texel, *ta, true);
   addRealOption(texel, "--d-min", ta->buildDMin,
                 "With a model: d_min of its atlas tree build (default 0: scene diagonal / 72, which for a small scene "
                 "such as railway.glb means gigatexels; see docs/mta-build.md)",
                 kNonNegative);
   addModelBudgetOptions(texel, ta->limits);
-  texel->callback([ta] { std::printf("%s\n", runTexel(*ta).dump(2).c_str()); });
+  texel->callback([ta, against] {
+    if (fs::path(ta->input).extension() == ".tframe") {
+      const TexelFrameArgs f{ta->input, *against, ta->out, ta->threads};
+      const nlohmann::json summary = runTexelFrame(f);
+      std::printf("%s\n", summary.dump(2).c_str());
+      if (summary.contains("identical_lambda") && !summary["identical_lambda"].get<bool>()) throw CLI::RuntimeError(1);
+      return;
+    }
+    if (!against->empty())
+      throw Error("--against " + *against + ": only a .tframe input can be compared (" + ta->input + " is not one)");
+    std::printf("%s\n", runTexel(*ta).dump(2).c_str());
+  });
 }
 
 }  // namespace tessera::cli
