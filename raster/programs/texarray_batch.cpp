@@ -9,7 +9,8 @@
 //   and colour.a < alphaCutoff (glTF 2.0 §3.9.4 MASK: alpha >= cutoff renders opaque; a cutoff <= 0,
 //   as OPAQUE and BLEND store it, never discards, even a negative alpha);
 //   then opaqueFlag != 0 forces colour.a = 1 (OPAQUE and MASK), 0 keeps it (BLEND). The same order as
-//   "textured" (docs/spec-choices.md, "Alpha test"), so both give one colour for one material.
+//   "textured" (docs/spec-choices.md F9, F10), so both give one colour for one material.
+//   Two texels per entry: a buffer of at most 2^27 texels holds at most 2^26 entries.
 //   Factors must be >= 0: provenance mode bounds the output by running on the sampler's lower and
 //   upper bounds, which needs a program monotone in each sampled channel.
 // Units 1 .. 1 + kMaxArrays - 1: the texture arrays TA_0 .. TA_7 (sampler2DArray).

@@ -6,7 +6,7 @@
 // and (texel * tint).a < cutoff (glTF 2.0 §3.9.4 MASK; 0, the default, never discards); slot 8.z =
 // opaque flag: != 0 forces the output alpha to 1 after the test (glTF OPAQUE and MASK). The order
 // (multiply, test, force) is texarray_batch's materials layout, so a material gives one colour in the
-// baseline and the batched frame (docs/spec-choices.md, "Alpha test"). With REPEAT addressing M
+// baseline and the batched frame (docs/spec-choices.md F9, F10). With REPEAT addressing M
 // realises the 2^k atlas scaling of the texture atlas tree (Buchholz 2005 §4.5.4).
 #include "raster/programs/common.h"
 

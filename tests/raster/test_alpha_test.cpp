@@ -1,4 +1,4 @@
-// glTF materials in the programs (docs/spec-choices.md, "Alpha test"): the base-colour factor, the MASK
+// glTF materials in the programs (docs/spec-choices.md F9, F10): the base-colour factor, the MASK
 // alpha test as a discard, and OPAQUE / MASK alpha forced to 1, in "textured" (slot 8.y / 8.z) and in
 // "texarray_batch"'s materials TAM layout (slot 4.x = 1); and in provenance mode the ALPHA_TEST fork
 // where the legal filtered alpha straddles the cutoff (docs/crosscheck.md).
