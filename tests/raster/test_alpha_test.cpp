@@ -186,7 +186,7 @@ TEST(Materials, TheBaselineAndTheBatchedProgramGiveTheSameColoursForTheSameMater
   // y = 16, t = 12.5 / 24 = 0.5208, and s = (x + 0.5 - 4) / 56: column 42 (s + t = 1.2083, 123.7 LSB)
   // keeps the background, column 47 (1.2976, 132.9 LSB) is written with alpha forced to 255.
   const auto px = [&](int x, int y) { return &img[(size_t(95 - y) * 128 + x) * 4]; };
-  EXPECT_EQ(px(42, 16)[0], 26);  // 0.1 * 255 = 25.5, the background
+  EXPECT_EQ(px(42, 16)[0], 28);  // 0.11 * 255 = 28.05, the background
   EXPECT_EQ(px(42, 16)[2], 51);  // 0.2 * 255
   EXPECT_EQ(px(47, 16)[2], 63);  // the four texels around have blue 90; 90 * 0.7 = 63
   EXPECT_EQ(px(47, 16)[3], 255);
@@ -195,7 +195,7 @@ TEST(Materials, TheBaselineAndTheBatchedProgramGiveTheSameColoursForTheSameMater
   uint64_t background = 0;
   for (int y = 4; y < 28; ++y)
     for (int x = 4; x < 124; ++x)
-      if (x < 60 || x >= 68) background += px(x, y)[0] == 26 && px(x, y)[1] == 38 && px(x, y)[2] == 51;
+      if (x < 60 || x >= 68) background += px(x, y)[0] == 28 && px(x, y)[1] == 38 && px(x, y)[2] == 51;
   EXPECT_GT(background, 0u);
   EXPECT_EQ(r.stats.fragments_discarded, background);
 }
