@@ -3,7 +3,8 @@
 // them. The GL cross-check accepts a GL pixel iff it lies in one candidate's box. A pixel with no
 // class has one candidate of exactly one value, so it must match bit for bit.
 //
-// Discrete freedoms (a fragment written or not at an edge or depth tie) fork the candidate set; the
+// Discrete freedoms (a fragment written or not at an edge or depth tie, or at an alpha test whose
+// legal alpha interval straddles the cutoff) fork the candidate set; the
 // continuous ones (rounding, blending and filtering precision) widen each candidate's own box. The
 // lo / hi images hold the hull of the set (what a later lookup of the texture reads, and what the
 // reports show). A shared edge's two triangles are correlated through edge tags: of two triangles on
@@ -43,7 +44,8 @@ enum AmbiguityClass : uint16_t {
   kBlendPrecision = 1u << 9,   // unorm blending precision (+-1 LSB per blended write)
   kOutputRounding = 1u << 10,  // the unrounded output is within interpolation tolerance of a rounding step
   kInputInterval = 1u << 11,   // a sampled texture was rendered here and its texels carry their own freedoms
-  kClassCount = 12
+  kAlphaTest = 1u << 12,       // the program's discard (alpha test) differs between the legal sampled values
+  kClassCount = 13
 };
 std::string_view ambiguityClassName(int bit);
 

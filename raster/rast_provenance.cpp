@@ -7,6 +7,9 @@
 //   an endpoint made by clipping, GL's float clipping), so another legal implementation may cover it
 //   or not: every candidate forks into "written" and "not written". Near an edge shared with another
 //   triangle the two are correlated by edge tags (no gap, no double hit).
+// - ALPHA_TEST: the program discards the fragment in some of its runs (lower bound, upper bound, value,
+//   lookup candidates) and not in others: the alpha that GL filters may lie on either side of the
+//   program's cutoff, so the same fork (the written outcome takes the fragment's whole box).
 // - DEPTH_NEAR_EQUAL: the depth test is within the depth tolerance of flipping: the same fork. Each
 //   candidate carries the depth its own chain left (CandidateDepth), so a later test is decided per
 //   candidate; where the stored depth's writer has the incoming fragment's depth-writer signature
@@ -86,6 +89,7 @@ struct PixelUpdate {
   bool depthPass;    // the oracle's depth test passes
   bool depthTie;     // another legal depth may flip that (DEPTH_NEAR_EQUAL)
   bool discarded;    // the program discards the fragment (value run)
+  bool discardTie;   // another legal sampled value flips that (ALPHA_TEST)
   bool keepValue;    // the oracle writes this fragment
   bool ambiguous;    // another legal outcome differs in whether it writes
   bool dontCare;     // the program used an undefined value
@@ -160,12 +164,12 @@ inline CandidateDepth mergeDepth(const CandidateDepth& a, const CandidateDepth& 
 // Whether a fragment that the candidate's coverage outcome `covered` produced is written, given the
 // candidate's depth test.
 inline void writeOutcomes(const PixelUpdate& u, const DepthOutcome& d, bool covered, bool& canWrite, bool& canSkip) {
-  if (!covered || u.discarded) {
+  if (!covered || (u.discarded && !u.discardTie)) {
     canWrite = false, canSkip = true;
     return;
   }
   canWrite = d.pass || d.tie;
-  canSkip = !d.pass || d.tie;
+  canSkip = !d.pass || d.tie || u.discardTie;
 }
 
 // The channel layout of a target format for candidate boxes.
@@ -617,7 +621,7 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
         }
       }
       const uint8_t valueWrite = cov & pass;
-      const uint8_t ambiguous = (tie & (pass | nearDepth)) | (cov & nearDepth);
+      uint8_t ambiguous = (tie & (pass | nearDepth)) | (cov & nearDepth);
       stats.fragments_depth_failed += uint64_t(std::popcount(uint32_t(cov & ~pass)));
       if (!(valueWrite | ambiguous)) continue;
 
@@ -649,10 +653,22 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
       sp.candidate = -1;
       sp.active = false;
       sp.bound = SampleBound::Value;
+      // ALPHA_TEST (docs/crosscheck.md): the runs bound every legal sampled value and the programs are
+      // monotone, so a pixel that some runs discard and others keep may go either way in GL.
+      uint8_t discardAny = uint8_t(outs[0].discard | outs[1].discard | outs[2].discard);
+      uint8_t discardAll = uint8_t(outs[0].discard & outs[1].discard & outs[2].discard);
+      for (int li = 0; li < lookupRuns; ++li)
+        for (int r = 0; r < 2; ++r) {
+          discardAny = uint8_t(discardAny | lookupOuts[r][li].discard);
+          discardAll = uint8_t(discardAll & lookupOuts[r][li].discard);
+        }
+      const uint8_t discardTie = uint8_t(discardAny & ~discardAll);
+      ambiguous = uint8_t(ambiguous | (discardTie & (valueWrite | ambiguous)));
 
       stats.quads_shaded += 1;
       stats.fragments_shaded += uint64_t(std::popcount(uint32_t(valueWrite)));
       stats.helper_invocations += uint64_t(4 - std::popcount(uint32_t(valueWrite)));
+      stats.fragments_discarded += uint64_t(std::popcount(uint32_t(valueWrite & outs[2].discard)));
       for (int p = 0; p < 4; ++p) {
         const bool keep = (valueWrite >> p & 1) && !(outs[2].discard >> p & 1);
         const bool amb = ambiguous >> p & 1;
@@ -665,6 +681,7 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
         u.depthPass = pass >> p & 1;
         u.depthTie = nearDepth >> p & 1;
         u.discarded = outs[2].discard >> p & 1;
+        u.discardTie = discardTie >> p & 1;
         u.keepValue = keep;
         u.ambiguous = amb;
         u.dontCare = sp.dontCare[size_t(p)] || unbounded;
@@ -688,7 +705,7 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
           for (int i = 0; i < 3; ++i)
             if (nm >> i & 1) tieClass |= t.edgeKind[i] == kEdgeClipped ? kClipEdge : kEdgeTie;
         u.classes = uint16_t(sp.classes[size_t(p)] | (sp.dontCare[size_t(p)] ? kOobFetch : 0) | tieClass |
-                             ((nearDepth >> p & 1) ? kDepthNearEqual : 0));
+                             ((nearDepth >> p & 1) ? kDepthNearEqual : 0) | (u.discardTie ? kAlphaTest : 0));
         for (int a = 0; a < ds.colorOutputs; ++a) {
           TextureData* c = tv.color[size_t(a)];
           if (!c || !c->prov) continue;

@@ -1,14 +1,28 @@
-// Program "texarray_batch": texture-array batching (Trapp & Döllner 2015, Listing 1).
-// Attributes: 0 = position, 1 = (s, t, indexTAM). Uniforms: slots 0-3 = MVP.
-// Unit 0: the texture-array mapping TAM, a buffer texture (RG32F): entry e = (arrayID, layerID).
+// Program "texarray_batch": texture-array batching (Trapp & Döllner 2015, Listing 1), with glTF
+// materials (base-colour factor, alpha MASK / OPAQUE / BLEND) per TAM entry.
+// Attributes: 0 = position, 1 = (s, t, indexTAM). Uniforms: slots 0-3 = MVP; slot 4.x = TAM layout.
+// Unit 0: the texture-array mapping TAM, a buffer texture, in one of two layouts (slot 4.x):
+// - 0 (any value but 1): RG32F, entry e = texel e = (arrayID, layerID); colour = the texel.
+// - 1 (materials): RGBA32F, entry e = texels 2e and 2e + 1: texel 2e = (arrayID, layerID,
+//   alphaCutoff, opaqueFlag), texel 2e + 1 = the base-colour factor (r, g, b, a).
+//   colour = texel * factor (component-wise, float); the fragment is discarded iff alphaCutoff > 0
+//   and colour.a < alphaCutoff (glTF 2.0 §3.9.4 MASK: alpha >= cutoff renders opaque; a cutoff <= 0,
+//   as OPAQUE and BLEND store it, never discards, even a negative alpha);
+//   then opaqueFlag != 0 forces colour.a = 1 (OPAQUE and MASK), 0 keeps it (BLEND). The same order as
+//   "textured" (docs/spec-choices.md F9, F10), so both give one colour for one material.
+//   Two texels per entry: a buffer of at most 2^27 texels holds at most 2^26 entries.
+//   Factors must be >= 0: provenance mode bounds the output by running on the sampler's lower and
+//   upper bounds, which needs a program monotone in each sampled channel.
 // Units 1 .. 1 + kMaxArrays - 1: the texture arrays TA_0 .. TA_7 (sampler2DArray).
 //
-// Per fragment: indexTAM = int(floor(z + 0.5)); (arrayID, layerID) = texelFetch(TAM, indexTAM);
-// colour = textureGrad(TA[arrayID], (s, t, layerID), dFdx(st), dFdy(st)). The derivatives are the
-// quad's coarse differences taken before choosing the array, as the GLSL twin must do: GLSL forbids
-// non-uniform sampler indexing and derivatives inside non-uniform control flow are undefined
-// (GLSL 4.50 §8.9), so the twin computes dFdx/dFdy first and then switches over arrayID.
-// An arrayID outside [0, kMaxArrays) or an unbound array unit gives (0, 0, 0, 1) (incomplete).
+// Per fragment: indexTAM = int(floor(z + 0.5)) (the paper's int() truncates, but an interpolated
+// constant k may arrive as k - epsilon); (arrayID, layerID) = texelFetch(TAM, indexTAM) (layout 1:
+// 2 * indexTAM); colour = textureGrad(TA[arrayID], (s, t, layerID), dFdx(st), dFdy(st)). The
+// derivatives are the quad's coarse differences taken before choosing the array, as the GLSL twin must
+// do: GLSL forbids non-uniform sampler indexing and derivatives inside non-uniform control flow are
+// undefined (GLSL 4.50 §8.9), so the twin computes dFdx/dFdy first and then switches over arrayID.
+// An arrayID outside [0, kMaxArrays) or an unbound array unit gives (0, 0, 0, 1) (incomplete); in
+// layout 1 that texel is multiplied and tested like any other.
 #include <cmath>
 #include <cstring>
 
@@ -29,6 +43,7 @@ class TexarrayBatch final : public Program {
     }
   }
   void shadeQuads(const QuadBatch& b, const ShadeContext& ctx) const override {
+    const bool materials = ctx.uniforms[4][0] == 1.0f;
     for (size_t q = 0; q < b.count; ++q) {
       const Quad& quad = b.quads[q];
       float s[4], t[4];
@@ -37,7 +52,17 @@ class TexarrayBatch final : public Program {
       const float dsdx = s[1] - s[0], dtdx = t[1] - t[0], dsdy = s[2] - s[0], dtdy = t[2] - t[0];
       // The entry of each pixel; a quad normally lies in one triangle, so one entry for all four.
       float tae[4][4];
-      for (int p = 0; p < 4; ++p) fetchBuffer(ctx.units[0], toIndex(quad.var[p][2]), tae[p]);
+      float factor[4][4];
+      for (int p = 0; p < 4; ++p) {
+        const int64_t e = toIndex(quad.var[p][2]);
+        // toIndex gives -1 or |e| < 2^62 (its limit 4.6e18), so 2e + 1 cannot overflow.
+        if (materials) {
+          fetchBuffer(ctx.units[0], e < 0 ? -1 : 2 * e, tae[p]);
+          fetchBuffer(ctx.units[0], e < 0 ? -1 : 2 * e + 1, factor[p]);
+        } else {
+          fetchBuffer(ctx.units[0], e, tae[p]);
+        }
+      }
       const bool uniform = std::memcmp(tae[0], tae[1], sizeof tae[0]) == 0 &&
                            std::memcmp(tae[0], tae[2], sizeof tae[0]) == 0 &&
                            std::memcmp(tae[0], tae[3], sizeof tae[0]) == 0;
@@ -58,6 +83,14 @@ class TexarrayBatch final : public Program {
           float one[4][4];
           sampleGrad2DArray(ctx.units[1 + int(arrayId)], sp, tp, rp, dsdx, dtdx, dsdy, dtdy, one);
           for (int k = 0; k < 4; ++k) c[p][k] = one[0][k];
+        }
+      }
+      if (materials) {
+        for (int p = 0; p < 4; ++p) {
+          // glTF material: factor, alpha test on the factored alpha, then OPAQUE / MASK force alpha 1.
+          for (int k = 0; k < 4; ++k) c[p][k] = c[p][k] * factor[p][k];
+          if (tae[p][2] > 0.0f && c[p][3] < tae[p][2]) b.out[q].discard |= uint8_t(1u << p);
+          if (tae[p][3] != 0.0f) c[p][3] = 1.0f;
         }
       }
       for (int p = 0; p < 4; ++p) storeColor(b.out[q], 0, p, c[p]);

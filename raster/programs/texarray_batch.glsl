@@ -1,8 +1,13 @@
 #version 450 core
 // GLSL twin of texarray_batch.cpp (program "texarray_batch"): texture-array batching (Trapp &
-// Döllner 2015, Listing 1).
-// Attributes: 0 = position, 1 = (s, t, indexTAM). Uniforms: u[0..3] = MVP.
-// Unit 0: the texture-array mapping TAM, a buffer texture (samplerBuffer): entry e = (arrayID, layerID).
+// Döllner 2015, Listing 1), with glTF materials per TAM entry.
+// Attributes: 0 = position, 1 = (s, t, indexTAM). Uniforms: u[0..3] = MVP; u[4].x = TAM layout.
+// Unit 0: the texture-array mapping TAM, a buffer texture (samplerBuffer), in one of two layouts:
+// - u[4].x != 1: RG32F, entry e = texel e = (arrayID, layerID); colour = the texel.
+// - u[4].x == 1 (materials): RGBA32F, entry e = texels 2e = (arrayID, layerID, alphaCutoff,
+//   opaqueFlag) and 2e + 1 = base-colour factor; colour = texel * factor, discard iff alphaCutoff > 0
+//   and colour.a < alphaCutoff, then opaqueFlag != 0 forces colour.a = 1. The same order as the C++ and as
+//   textured.glsl; `precise` keeps the product unfused.
 // Units 1..8: the texture arrays TA0..TA7 (sampler2DArray).
 // Backend uniform tessera_boundUnits (never set by a command list): bit u = unit u has a texture.
 //
@@ -72,7 +77,10 @@ void main() {
   // (2^27 texels) or NaN is out of range like the C++'s out-of-range int64.
   const double zi = floor(double(v_str.z) + 0.5lf);
   const int index = (zi >= 0.0lf && zi < 134217728.0lf) ? int(zi) : -1;
-  const vec4 tae = fetchTam(index);
+  const bool materials = u[4].x == 1.0;
+  // Layout 1: entry e is texels 2e and 2e + 1 (index < 2^27, so 2 * index + 1 fits an int).
+  const vec4 tae = fetchTam(materials && index >= 0 ? 2 * index : index);
+  const vec4 factor = materials ? fetchTam(index >= 0 ? 2 * index + 1 : -1) : vec4(1.0);
   const float arrayId = tae.x;
   vec4 c = vec4(0.0, 0.0, 0.0, 1.0);  // arrayID outside [0, 8): (0, 0, 0, 1), as the C++
   if (arrayId >= 0.0 && arrayId < 8.0) {
@@ -87,6 +95,12 @@ void main() {
       case 6: c = textureGrad(TA6, p, dx, dy); break;
       default: c = textureGrad(TA7, p, dx, dy); break;
     }
+  }
+  if (materials) {
+    precise vec4 m = c * factor;  // component-wise, as the C++'s c[k] * factor[k]
+    if (tae.z > 0.0 && m.a < tae.z) discard;  // glTF MASK: alpha >= cutoff renders
+    if (tae.w != 0.0) m.a = 1.0;  // OPAQUE / MASK: rendered fully opaque
+    c = m;
   }
   o_color = c;
 }

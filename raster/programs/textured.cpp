@@ -2,8 +2,12 @@
 // Attributes: 0 = position, 1 = texcoord (s, t). Uniforms: slots 0-3 = MVP; slots 4, 5, 6 = the
 // columns of the 3x3 texture matrix M in .xyz (applied per vertex: M is affine, so applying it per
 // vertex and interpolating equals applying it per fragment); slot 7 = RGBA tint; slot 8.x = shader
-// LOD bias (texture(s, c, bias)). With REPEAT addressing M realises the 2^k atlas scaling of the
-// texture atlas tree (Buchholz 2005 §4.5.4).
+// LOD bias (texture(s, c, bias)); slot 8.y = alpha cutoff: the fragment is discarded iff cutoff > 0
+// and (texel * tint).a < cutoff (glTF 2.0 §3.9.4 MASK; 0, the default, never discards); slot 8.z =
+// opaque flag: != 0 forces the output alpha to 1 after the test (glTF OPAQUE and MASK). The order
+// (multiply, test, force) is texarray_batch's materials layout, so a material gives one colour in the
+// baseline and the batched frame (docs/spec-choices.md F9, F10). With REPEAT addressing M
+// realises the 2^k atlas scaling of the texture atlas tree (Buchholz 2005 §4.5.4).
 #include "raster/programs/common.h"
 
 namespace tessera::programs {
@@ -23,7 +27,8 @@ class Textured final : public Program {
   }
   void shadeQuads(const QuadBatch& b, const ShadeContext& ctx) const override {
     const float* tint = ctx.uniforms[7].data();
-    const float bias = ctx.uniforms[8][0];
+    const float bias = ctx.uniforms[8][0], cutoff = ctx.uniforms[8][1];
+    const bool opaque = ctx.uniforms[8][2] != 0.0f;
     for (size_t q = 0; q < b.count; ++q) {
       const Quad& quad = b.quads[q];
       float s[4], t[4], texel[4][4];
@@ -32,6 +37,8 @@ class Textured final : public Program {
       for (int p = 0; p < 4; ++p) {
         float c[4];
         for (int k = 0; k < 4; ++k) c[k] = texel[p][k] * tint[k];
+        if (cutoff > 0.0f && c[3] < cutoff) b.out[q].discard |= uint8_t(1u << p);
+        if (opaque) c[3] = 1.0f;
         storeColor(b.out[q], 0, p, c);
       }
     }

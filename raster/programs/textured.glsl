@@ -2,7 +2,9 @@
 // GLSL twin of textured.cpp (program "textured"): texture(unit 0, M * (s, t, 1), bias) * tint.
 // Attributes: 0 = position, 1 = texcoord (s, t). Uniforms: u[0..3] = MVP; u[4], u[5], u[6] = the
 // columns of the 3x3 texture matrix M in .xyz (applied per vertex, as in the C++); u[7] = RGBA tint;
-// u[8].x = shader LOD bias. Unit 0: the texture (sampler2D).
+// u[8].x = shader LOD bias; u[8].y = alpha cutoff (discard iff > 0 and (texel * tint).a < it);
+// u[8].z = opaque flag (!= 0: output alpha 1 after the test). The same order as the C++ and as
+// texarray_batch.glsl's materials. Unit 0: the texture (sampler2D).
 // Stage layout and uniform conventions: see flat_color.glsl.
 
 layout(location = 0) uniform vec4 u[64];
@@ -43,6 +45,9 @@ layout(location = 0) out vec4 o_color;
 void main() {
   // Implicit derivatives (the oracle's are coarse, spec-choices T1) plus the shader bias.
   const vec4 texel = texture(tex0, v_st, u[8].x);
+  // One rounded multiply per component (nothing to fuse); the test reads the product back.
   o_color = texel * u[7];
+  if (u[8].y > 0.0 && o_color.a < u[8].y) discard;  // glTF MASK: alpha >= cutoff renders
+  if (u[8].z != 0.0) o_color.a = 1.0;               // OPAQUE / MASK: rendered fully opaque
 }
 #endif

@@ -34,5 +34,6 @@ void buildAtlasClip(CommandList& cl, int w, int h);
 void buildLodLevels(CommandList& cl, int w, int h);
 void buildDepthTies(CommandList& cl, int w, int h);
 void buildFarVertices(CommandList& cl, int w, int h);
+void buildAlphaMask(CommandList& cl, int w, int h);
 
 }  // namespace tessera::scenes

@@ -28,6 +28,7 @@ const std::vector<Entry>& entries() {
       {{"atlas_clip", "render-to-texture-atlas clipping: clip distances from the undisplaced position cut a quad that the displacement moves inside", 64, 64}, buildAtlasClip},
       {{"lod_levels", "LOD without rho freedom: screen-aligned quads of constant isotropic lambda (0.25 .. 1.7) over a texture with one tint per level, trilinear and nearest-mip", 128, 64}, buildLodLevels},
       {{"depth_ties", "exact depth ties: sloped quads redrawn with the same vertices under LESS / LEQUAL / GREATER / GEQUAL, so only the non-strict functions pass", 160, 96}, buildDepthTies},
+      {{"alpha_mask", "glTF materials: base-colour factors, alpha MASK (discard), OPAQUE and BLEND in textured and in texarray_batch's materials TAM, over an alpha gradient", 128, 96}, buildAlphaMask},
   };
   return e;
 }
