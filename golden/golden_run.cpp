@@ -61,7 +61,7 @@ GoldenReport run(const GoldenOptions& o, bool update) {
   // Entries for images that nothing presents any more are stale. Without railway.glb the atlas tree
   // frames were not rendered, so their entries say nothing.
   for (const auto& [name, e] : manifest.tests)
-    if (!seen.count(name) && !(o.railway.empty() && (e.scene == kRailwayScene || e.scene == kTabRailwayScene))) report.stale.push_back(name);
+    if (!seen.count(name) && !(o.railway.empty() && isRailwayScene(e.scene))) report.stale.push_back(name);
   if (update) {
     for (const std::string& n : report.stale) manifest.tests.erase(n);
     writeManifest(o.dir + "/manifest.json", manifest);

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "golden/railway_frames.h"
@@ -18,6 +19,10 @@
 namespace tessera::golden {
 
 inline constexpr const char* kTabRailwayScene = "tab_railway";
+
+// Whether a manifest entry's scene is rendered from railway.glb (atlas tree or TAB frames) rather than
+// presented by a built-in scene.
+inline bool isRailwayScene(std::string_view scene) { return scene == kRailwayScene || scene == kTabRailwayScene; }
 
 // Throws Error naming the file when railway.glb is missing.
 std::vector<RailwayFrame> tabRailwayFrames(const std::string& railwayPath);

@@ -63,6 +63,17 @@ case "$case_name" in
     [ "$(json_field replay.json "['image_sha256']")" = "$(json_field r/frames.json "['frames'][7]['image_sha256']")" ] \
       || fail "the saved batched frame does not replay to its image"
     ;;
+  tab_golden_command_reproduces_the_golden_frames)
+    # The manifest's command for tab_railway.fNNN, run through the CLI (with the .tab file round trip),
+    # must give the golden pixels that golden/tab_railway_frames.cpp renders in memory.
+    "$tessera" tab build "$src/data/railway.glb" -o railway.tab --quiet > /dev/null
+    "$tessera" tab render railway.tab --path orbit --frames 24 --size 256x192 --save-every 8 -o r --quiet > /dev/null
+    for f in 0 8 16 23; do
+      want=$(json_field "$src/golden/manifest.json" "['tests']['tab_railway.f$(printf %03d $f)']['image_sha256']")
+      got=$(python3 -c "import json; print([r for r in json.load(open('r/frames.json'))['frames'] if r['frame'] == $f][0]['image_sha256'])")
+      [ "$want" = "$got" ] || fail "frame $f: $got, golden $want"
+    done
+    ;;
   tab_bad_input_exits_2)
     refused 2 "--a-max: 9 must be in 1..8" "$tessera" tab build "$src/data/railway.glb" -o x.tab --a-max 9
     [ ! -e x.tab ] || fail "a refused build left x.tab"
