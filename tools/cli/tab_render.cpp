@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 
 #include "base/error.h"
 #include "base/sha256.h"
@@ -16,11 +17,13 @@
 #include "raster/counters.h"
 #include "raster/cpu_backend.h"
 #include "raster/image_io.h"
+#include "raster/lod_probe.h"
 #include "raster/serialize.h"
 #include "tools/cli/frame_job.h"
 #include "tools/cli/mta_path_run.h"
 #include "tools/cli/options.h"
 #include "tools/cli/output_directory.h"
+#include "verify/lod_compare.h"
 
 namespace tessera::cli {
 
@@ -109,6 +112,7 @@ nlohmann::json runTabRender(const TabRenderArgs& a) {
   saveRule.saveEvery = a.saveEvery;
   Progress progress("tab render", path.frames.size(), a.quiet);
   double identicalMin = 100.0, identicalSum = 0.0;
+  uint64_t lambdaDiffering = 0, lambdaPixels = 0;
   for (size_t i = 0; i < path.frames.size(); ++i) {
     mta::validate(path.frames[i], "tab render: camera path frame " + std::to_string(i));
     batching::TabView view;
@@ -117,6 +121,7 @@ nlohmann::json runTabRender(const TabRenderArgs& a) {
     view.width = uint32_t(w), view.height = uint32_t(h);
     const bool save = saveFrame(saveRule, i, path.frames.size());
     std::vector<uint8_t> firstImage;
+    std::optional<CommandList> firstList;
     std::string detail;
     for (Variant v : variants) {
       batching::TabDraws draws;
@@ -158,13 +163,23 @@ nlohmann::json runTabRender(const TabRenderArgs& a) {
         r["identical_percent"] = pct;
         identicalMin = std::min(identicalMin, pct);
         identicalSum += pct;
+        // The same LOD at every pixel (docs/texel.md): the probe re-renders both frames (untimed).
+        const verify::LodComparison lc =
+            verify::compareLodMaps(lodMap(*firstList, a.threads), lodMap(list, a.threads), "baseline", "batched");
+        nlohmann::json reasons;
+        for (int k = 1; k < verify::kLodDiffKinds; ++k) reasons[std::string(verify::lodDiffName(verify::LodDiff(k)))] = lc.count[k];
+        r["lambda_pixels_with_lookups"] = lc.pixelsWithLookups;
+        r["lambda_differing_pixels"] = lc.differing;
+        r["lambda_differing_by_reason"] = reasons;
+        lambdaDiffering += lc.differing;
+        lambdaPixels += lc.pixelsWithLookups;
         if (save) {
           const std::string diff = frameName("diff", i);
           writePngRGBA8((fs::path(a.out) / diff).string(), w, h, diffImage(firstImage, pixels).data());
           r["diff_image"] = diff;
         }
       }
-      if (firstImage.empty()) firstImage = std::move(pixels);
+      if (firstImage.empty()) firstImage = std::move(pixels), firstList = list;
       detail += std::string(batching::variantName(v)) + " " + std::to_string(c.draw_calls) + " draws ";
       rows.push_back(std::move(r));
     }
@@ -198,6 +213,8 @@ nlohmann::json runTabRender(const TabRenderArgs& a) {
     const double n = double(path.frames.size());
     summary["identical_percent_mean"] = n > 0 ? identicalSum / n : 100.0;
     summary["identical_percent_min"] = identicalMin;
+    summary["lambda_pixels_with_lookups"] = lambdaPixels;
+    summary["lambda_differing_pixels"] = lambdaDiffering;
     summary["speedup_oracle"] = summary["batched"]["frame_time_ms_mean"].get<double>() > 0
                                     ? summary["baseline"]["frame_time_ms_mean"].get<double>() /
                                           summary["batched"]["frame_time_ms_mean"].get<double>()
