@@ -156,6 +156,8 @@ class Validator {
       if (!std::isfinite(m.alphaCutoff)) fail(f + ".alpha_cutoff", num(m.alphaCutoff) + " is not finite");
       if (m.kind == MeshKind::Untextured && !m.textures.empty())
         fail(f + ".textures", n(m.textures.size()) + " textures on an untextured mesh");
+      if (m.kind == MeshKind::Blend && m.textures.empty())
+        fail(f + ".textures", "none on a BLEND mesh (it is drawn with its texture; untextured meshes are drawn flat)");
       if (m.kind == MeshKind::Batched) batchedMesh(m, f);
     }
     if (end != s_.vertices.size()) fail("meshes", "cover " + n(end) + " of the " + n(s_.vertices.size()) + " vertices");

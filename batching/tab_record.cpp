@@ -153,12 +153,16 @@ CommandList recordTabFrame(const TabScene& s, Variant variant, const TabView& vi
   }
   const ResourceId textured = (variant == Variant::Baseline || !blend.empty()) ? cl.createProgram("textured") : kNone;
   const ResourceId flat = flatVb != kNone ? cl.createProgram("vertex_color") : kNone;
+  // Meshes drawn with `textured` (the baseline's batched meshes, every BLEND mesh): their unit-0 texture.
   std::vector<ResourceId> meshTexture(s.meshes.size(), kNone), meshSampler(s.meshes.size(), kNone);
-  for (uint32_t i : (variant == Variant::Baseline ? batched : std::vector<uint32_t>{}))
-    meshTexture[i] = rec.texture2D(s.meshes[i].textures[0]), meshSampler[i] = rec.sampler(s.textures[s.meshes[i].textures[0]].wrapS, s.textures[s.meshes[i].textures[0]].wrapT);
-  for (uint32_t i : blend)
-    if (!s.meshes[i].textures.empty())
-      meshTexture[i] = rec.texture2D(s.meshes[i].textures[0]), meshSampler[i] = rec.sampler(s.textures[s.meshes[i].textures[0]].wrapS, s.textures[s.meshes[i].textures[0]].wrapT);
+  auto prepareTextured = [&](uint32_t i) {
+    const uint32_t t = s.meshes[i].textures.at(0);
+    meshTexture[i] = rec.texture2D(t);
+    meshSampler[i] = rec.sampler(s.textures[t].wrapS, s.textures[t].wrapT);
+  };
+  if (variant == Variant::Baseline)
+    for (uint32_t i : batched) prepareTextured(i);
+  for (uint32_t i : blend) prepareTextured(i);
   struct BatchRes {
     std::vector<ResourceId> arrays, samplers;
     ResourceId tam = kNone;

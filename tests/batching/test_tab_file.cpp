@@ -394,6 +394,7 @@ TEST(TabFile, EachBrokenRuleIsRejectedNamingItsField) {
       {[](TabScene& s) { s.meshes[3].kind = MeshKind::Blend, s.meshes[4].kind = MeshKind::Untextured; },
        "meshes[4].kind: 1 after a mesh of kind 2"},
       {[](TabScene& s) { s.meshes[4].textures = {4}; }, "meshes[4].textures[0]: texture 4 does not exist"},
+      {[](TabScene& s) { s.meshes[4].textures = {}; }, "meshes[4].textures: none on a BLEND mesh"},
       {[](TabScene& s) { s.meshes[0].alphaMode = AlphaMode::Blend; }, "meshes[0].alpha_mode: BLEND on a batched mesh"},
       {[](TabScene& s) { s.meshes[1].kind = MeshKind::Untextured; },
        "meshes[1].textures: 2 textures on an untextured mesh"},
