@@ -391,7 +391,10 @@ TEST(TabFile, EachBrokenRuleIsRejectedNamingItsField) {
       {[](TabScene& s) { s.meshes[3].firstVertex = 13; }, "meshes[3].first_vertex: 13, expected 12"},
       {[](TabScene& s) { s.meshes[4].vertexCount = 6; }, "meshes[4].vertex_count: vertices [15, +6) run past the 18"},
       {[](TabScene& s) { s.meshes[4].vertexCount = 2; }, "meshes[4].vertex_count: 2 is not a multiple of 3"},
-      {[](TabScene& s) { s.meshes[3].kind = MeshKind::Blend, s.meshes[4].kind = MeshKind::Untextured; },
+      {[](TabScene& s) {
+         s.meshes[3].kind = MeshKind::Blend, s.meshes[3].textures = {0};
+         s.meshes[4].kind = MeshKind::Untextured, s.meshes[4].textures = {};
+       },
        "meshes[4].kind: 1 after a mesh of kind 2"},
       {[](TabScene& s) { s.meshes[4].textures = {4}; }, "meshes[4].textures[0]: texture 4 does not exist"},
       {[](TabScene& s) { s.meshes[4].textures = {}; }, "meshes[4].textures: none on a BLEND mesh"},
