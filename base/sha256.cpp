@@ -69,6 +69,9 @@ void Sha256::compress(const uint8_t* block) {
 }
 
 void Sha256::update(std::span<const uint8_t> bytes) {
+  // An empty span may carry a null data() (an empty vector), and memcpy's source must not be null even
+  // for zero bytes (C11 7.24.1p2): nothing to hash, so nothing to copy.
+  if (bytes.empty()) return;
   totalBytes_ += bytes.size();
   size_t i = 0;
   // Complete a pending partial block first, then hash whole blocks straight from the input.

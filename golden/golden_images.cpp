@@ -15,22 +15,18 @@ std::string testName(std::string_view scene, uint32_t attachment, uint32_t layer
 void renderGoldenImages(const ImageSource& source, const std::string& railwayPath, const ImageVisitor& visit) {
   if (source) source(visit);
   if (railwayPath.empty()) return;
-  for (const RailwayFrame& f : railwayFrames(railwayPath)) {
-    RenderedImage img;
-    img.name = f.name;
-    img.scene = kRailwayScene;
-    img.command = f.command;
-    img.texture = f.image.get();
-    visit(img);
-  }
-  for (const RailwayFrame& f : tabRailwayFrames(railwayPath)) {
-    RenderedImage img;
-    img.name = f.name;
-    img.scene = kTabRailwayScene;
-    img.command = f.command;
-    img.texture = f.image.get();
-    visit(img);
-  }
+  auto visitFrames = [&](const std::vector<RailwayFrame>& frames, const char* scene) {
+    for (const RailwayFrame& f : frames) {
+      RenderedImage img;
+      img.name = f.name;
+      img.scene = scene;
+      img.command = f.command;
+      img.texture = f.image.get();
+      visit(img);
+    }
+  };
+  visitFrames(railwayFrames(railwayPath), kRailwayScene);
+  visitFrames(tabRailwayFrames(railwayPath), kTabRailwayScene);
 }
 
 }  // namespace tessera::golden

@@ -23,6 +23,7 @@
 #include "tools/cli/mta_path_run.h"
 #include "tools/cli/options.h"
 #include "tools/cli/output_directory.h"
+#include "verify/html_escape.h"
 #include "verify/lod_compare.h"
 
 namespace tessera::cli {
@@ -54,22 +55,16 @@ std::vector<uint8_t> diffImage(const std::vector<uint8_t>& a, const std::vector<
   return d;
 }
 
-std::string htmlEscape(const std::string& s) {
-  std::string o;
-  for (char c : s) o += c == '<' ? "&lt;" : c == '>' ? "&gt;" : c == '&' ? "&amp;" : std::string(1, c);
-  return o;
-}
-
 void writeIndex(const TabRenderArgs& a, const nlohmann::json& table1, const nlohmann::json& summary, const nlohmann::json& rows) {
   std::string h =
       "<!doctype html><html><head><meta charset=\"utf-8\"><title>tessera tab render</title><style>"
       "body{font-family:sans-serif;margin:20px}table{border-collapse:collapse}td,th{border:1px solid #ccc;"
       "padding:3px 8px;text-align:right}img{max-width:420px;image-rendering:pixelated}</style></head><body>";
-  h += "<h1>Texture-array batching: " + htmlEscape(table1.value("source", a.input)) + "</h1>";
+  h += "<h1>Texture-array batching: " + verify::escapeHtml(table1.value("source", a.input)) + "</h1>";
   h += "<p>Baseline (w/o TAB): one draw per mesh, its texture bound when it changes. Batched (w TAB, Algorithm 2): per "
        "output batch, every texture array and the TAM bound once, one draw per geometry batch. Same triangles, same "
        "order (docs/tab.md).</p><h2>Scene (Table 1)</h2><pre>" +
-       htmlEscape(table1.dump(1)) + "</pre><h2>Summary</h2><pre>" + htmlEscape(summary.dump(1)) +
+       verify::escapeHtml(table1.dump(1)) + "</pre><h2>Summary</h2><pre>" + verify::escapeHtml(summary.dump(1)) +
        "</pre><img src=\"plot.png\" style=\"max-width:900px\"><h2>Frames</h2><table><tr><th>frame</th><th>variant</th>"
        "<th>draw calls</th><th>texture binds</th><th>texture state changes</th><th>state changes</th><th>ms</th>"
        "<th>identical %</th><th>image</th></tr>";
