@@ -22,6 +22,7 @@
 // Does not implement: packing, transforms, the record buffer.
 #pragma once
 
+#include <glm/common.hpp>
 #include <glm/mat4x4.hpp>
 #include <span>
 #include <vector>

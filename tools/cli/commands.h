@@ -16,5 +16,6 @@ void addMtaRenderCommand(CLI::App* mtaCmd);  // mta render (cmd_mta_render.cpp)
 void addMtaRunsCommand(CLI::App* mtaCmd);    // mta runs (cmd_mta_runs.cpp)
 void addTexelCommand(CLI::App& app);         // texel (cmd_texel.cpp)
 void addTabCommands(CLI::App& app);          // tab build / info / render (cmd_tab.cpp)
+void addRttaCommands(CLI::App& app);         // rtta render / params (cmd_rtta.cpp)
 
 }  // namespace tessera::cli

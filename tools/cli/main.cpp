@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   tessera::cli::addCityCommand(app);
   tessera::cli::addMtaCommands(app);
   tessera::cli::addTabCommands(app);
+  tessera::cli::addRttaCommands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {

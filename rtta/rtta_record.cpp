@@ -1,0 +1,417 @@
+#include "rtta/rtta_record.h"
+
+#include <algorithm>
+#include <fmt/format.h>
+#include <map>
+
+#include "base/error.h"
+#include "raster/limits.h"
+#include "rtta/record_buffer.h"
+#include "rtta/transform.h"
+
+namespace tessera::rtta {
+
+const char* modeName(Mode m) { return m == Mode::Std ? "std" : m == Mode::Rtt ? "rtt" : "rtta"; }
+const char* compositeName(Composite c) {
+  return c == Composite::Depth ? "depth" : c == Composite::Transparent ? "transparent" : "ghosted";
+}
+
+int32_t defaultAtlasSide(int32_t viewportSide, int32_t border) {
+  int32_t s = 1;
+  while (s < viewportSide + 2 * border) s *= 2;
+  return s;
+}
+
+namespace {
+
+template <class T>
+std::span<const uint8_t> asBytes(const std::vector<T>& v) {
+  return {reinterpret_cast<const uint8_t*>(v.data()), v.size() * sizeof(T)};
+}
+
+Wrap toWrap(batching::WrapMode w) {
+  switch (w) {
+    case batching::WrapMode::Repeat: return Wrap::Repeat;
+    case batching::WrapMode::ClampToEdge: return Wrap::ClampToEdge;
+    case batching::WrapMode::MirroredRepeat: return Wrap::MirroredRepeat;
+  }
+  return Wrap::Repeat;
+}
+
+// A run of consecutive meshes drawn by one draw: same texture (-1 = the white texel) and factor.
+struct DrawRun {
+  int64_t texture = -1;
+  std::array<float, 4> factor{1, 1, 1, 1};
+  uint32_t first = 0, count = 0;
+};
+
+int64_t textureOf(const batching::TabMesh& m) { return m.textures.empty() ? -1 : int64_t(m.textures[0]); }
+
+std::vector<DrawRun> drawRuns(const batching::TabScene& s) {
+  std::vector<DrawRun> runs;
+  for (const batching::TabMesh& m : s.meshes) {
+    if (m.vertexCount == 0) continue;
+    const int64_t t = textureOf(m);
+    if (!runs.empty() && runs.back().texture == t && runs.back().factor == m.factor &&
+        runs.back().first + runs.back().count == m.firstVertex) {
+      runs.back().count += m.vertexCount;
+      continue;
+    }
+    runs.push_back({t, m.factor, m.firstVertex, m.vertexCount});
+  }
+  return runs;
+}
+
+class Recorder {
+ public:
+  Recorder(const RttaScene& s, CommandList& cl) : s_(s), cl_(cl) {}
+
+  // Texture t of the scene (-1: a 1x1 white texel) with its sampler, bound on `unit` when it changes.
+  void bind(uint32_t unit, int64_t t) {
+    if (bound_ == t) return;
+    bound_ = t;
+    auto [it, fresh] = textures_.emplace(t, kNone);
+    if (fresh) {
+      TextureDesc d;
+      if (t < 0) {
+        d.width = d.height = 1;
+        it->second = cl_.createTexture(d);
+        const std::vector<uint8_t> white{255, 255, 255, 255};
+        cl_.uploadTexture(it->second, 0, 0, white);
+      } else {
+        const batching::TabTexture& tex = s_.tab.textures[size_t(t)];
+        d.width = tex.width;
+        d.height = tex.height;
+        d.levels = uint32_t(tex.levels.size());
+        it->second = cl_.createTexture(d);
+        for (uint32_t l = 0; l < tex.levels.size(); ++l) cl_.uploadTexture(it->second, l, 0, tex.levels[l]);
+      }
+    }
+    cl_.bindTexture(unit, it->second);
+    const batching::TabTexture* tex = t < 0 ? nullptr : &s_.tab.textures[size_t(t)];
+    const uint32_t key = tex ? uint32_t(tex->wrapS) * 16 + uint32_t(tex->wrapT) : 0;
+    if (key != boundSampler_) {
+      boundSampler_ = key;
+      auto [sit, sfresh] = samplers_.emplace(key, kNone);
+      if (sfresh) {
+        SamplerState st;
+        st.wrapS = tex ? toWrap(tex->wrapS) : Wrap::Repeat;
+        st.wrapT = tex ? toWrap(tex->wrapT) : Wrap::Repeat;
+        st.minFilter = Filter::LinearMipmapLinear;
+        st.magFilter = Filter::Linear;
+        sit->second = cl_.createSampler(st);
+      }
+      cl_.bindSampler(unit, sit->second);
+    }
+  }
+  // Uploads every texture before the first draw (the frame's resources all come first).
+  void createAll(uint32_t unit, const std::vector<DrawRun>& runs) {
+    for (const DrawRun& r : runs) bind(unit, r.texture);
+    bound_ = -2;
+    boundSampler_ = ~0u;
+  }
+  void tint(const std::array<float, 4>& f) {
+    if (haveTint_ && tint_ == f) return;
+    haveTint_ = true;
+    tint_ = f;
+    cl_.setUniforms(7, f);
+  }
+  void resetUniformCache() { haveTint_ = false; }
+
+ private:
+  const RttaScene& s_;
+  CommandList& cl_;
+  std::map<int64_t, ResourceId> textures_;
+  std::map<uint32_t, ResourceId> samplers_;
+  int64_t bound_ = -2;
+  uint32_t boundSampler_ = ~0u;
+  std::array<float, 4> tint_{};
+  bool haveTint_ = false;
+};
+
+ResourceId target(CommandList& cl, Format f, uint32_t w, uint32_t h, uint32_t layers, uint64_t* bytes) {
+  TextureDesc d;
+  d.kind = layers > 1 ? TextureKind::Tex2DArray : TextureKind::Tex2D;
+  d.format = f;
+  d.width = w;
+  d.height = h;
+  d.layers = layers;
+  if (bytes) *bytes += uint64_t(w) * h * layers * texelBytes(f);
+  return cl.createTexture(d);
+}
+
+ResourceId recordBufferTexture(CommandList& cl, const std::vector<float>& texels) {
+  TextureDesc d;
+  d.kind = TextureKind::Buffer;
+  d.format = Format::RGBA32F;
+  d.width = uint32_t(texels.size() / 4);
+  d.buffer = cl.createBuffer(BufferKind::Texel, asBytes(texels));
+  return cl.createTexture(d);
+}
+
+std::vector<float> matrixSlots(const glm::mat4& m) {
+  std::vector<float> u(16);
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) u[size_t(c) * 4 + r] = m[c][r];
+  return u;
+}
+
+VertexLayout sceneLayout() {
+  VertexLayout l;
+  l.stride = sizeof(RttaVertex);
+  l.attribs[0] = {0, 3, AttribType::F32, 0};
+  l.attribs[1] = {1, 2, AttribType::F32, 12};
+  l.attribs[2] = {2, 1, AttribType::U32, 24};
+  return l;
+}
+
+// Sprite vertex: clip position (x, y, 0, 1) and (dx, dy, layer, 0) for atlas_sprite.
+struct SpriteVertex {
+  float x, y, z, w;
+  float dx, dy, layer, pad;
+};
+
+void addSprite(std::vector<SpriteVertex>& v, const PixelRect& screen, const Rect& vp, int32_t dx, int32_t dy,
+               int32_t layer) {
+  const float x0 = float(windowToNdc(screen.x0, vp.x, vp.w)), x1 = float(windowToNdc(screen.x1, vp.x, vp.w));
+  const float y0 = float(windowToNdc(screen.y0, vp.y, vp.h)), y1 = float(windowToNdc(screen.y1, vp.y, vp.h));
+  const float fdx = float(dx), fdy = float(dy), fl = float(layer);
+  const SpriteVertex c[4] = {{x0, y0, 0, 1, fdx, fdy, fl, 0}, {x1, y0, 0, 1, fdx, fdy, fl, 0},
+                             {x1, y1, 0, 1, fdx, fdy, fl, 0}, {x0, y1, 0, 1, fdx, fdy, fl, 0}};
+  for (int k : {0, 1, 2, 0, 2, 3}) v.push_back(c[k]);
+}
+
+}  // namespace
+
+RttaFrame recordRttaFrame(const RttaScene& scene, const RttaView& view, const RttaOptions& o) {
+  RttaFrame f;
+  CommandList& cl = f.list;
+  Recorder rec(scene, cl);
+  const Rect vp{0, 0, int32_t(view.width), int32_t(view.height)};
+  const std::vector<DrawRun> runs = drawRuns(scene.tab);
+  const size_t nObj = scene.objectNames.size();
+
+  // Algorithm 1, lines 1-9, for every mode (RTT and STD report the same regions).
+  f.records = parameterize(scene.objectBounds, view.mvp, vp, o.params);
+
+  // --- resources ---
+  f.screen = target(cl, Format::RGBA8, view.width, view.height, 1, nullptr);
+  const ResourceId screenDepth = f.screenDepth = target(cl, Format::D32F, view.width, view.height, 1, nullptr);
+  const ResourceId vb = cl.createBuffer(BufferKind::Vertex, asBytes(scene.vertices));
+  rec.createAll(1, runs);
+  const ResourceId texturedProg = o.mode == Mode::Std ? cl.createProgram("textured") : kNone;
+  const ResourceId captureProg = o.mode == Mode::Std ? kNone : cl.createProgram("atlas_capture");
+  const ResourceId spriteProg = o.mode == Mode::Std || o.captureOnly ? kNone : cl.createProgram("atlas_sprite");
+  const std::vector<float> mvp = matrixSlots(view.mvp);
+
+  std::vector<uint32_t> visible;
+  for (const Record& r : f.records)
+    if (r.visible()) visible.push_back(r.id);
+
+  ResourceId recBuf = kNone;
+  uint32_t layers = 0;
+  if (o.mode == Mode::Rtta) {
+    const int32_t tw = o.atlasWidth ? o.atlasWidth : defaultAtlasSide(vp.w, o.params.border);
+    const int32_t th = o.atlasHeight ? o.atlasHeight : defaultAtlasSide(vp.h, o.params.border);
+    validateAtlas(tw, th, vp, o.params.border);
+    f.atlas = atlasPackaging(f.records, tw, th);
+    f.inexactTransforms = computeTransforms(f.records, f.atlas, vp);
+    layers = std::max<uint32_t>({o.allocatedLayers, uint32_t(f.atlas.layers), 1u});
+    if (layers > uint32_t(kMaxArrayLayers))
+      throw Error(fmt::format("{} allocated atlas layers: at most {}", layers, kMaxArrayLayers));
+    recBuf = recordBufferTexture(cl, encodeRecordBuffer(f.records));
+  } else if (o.mode == Mode::Rtt) {
+    if (visible.size() > size_t(kMaxArrayLayers))
+      throw Error(fmt::format("RTT: {} visible objects need {} viewport-sized layers, at most {}", visible.size(),
+                              visible.size(), kMaxArrayLayers));
+    f.atlas = {vp.w, vp.h, int32_t(visible.size())};
+    layers = std::max<uint32_t>(uint32_t(visible.size()), 1u);
+    // Identity records: RTT renders each object where it is on screen.
+    std::vector<Record> identity(nObj);
+    for (size_t i = 0; i < nObj; ++i) identity[i].id = uint32_t(i), identity[i].layer = 0;
+    recBuf = recordBufferTexture(cl, encodeRecordBuffer(identity));
+  }
+  f.allocatedLayers = layers;
+  if (o.mode != Mode::Std) {
+    const uint32_t w = o.mode == Mode::Rtta ? uint32_t(f.atlas.width) : view.width;
+    const uint32_t h = o.mode == Mode::Rtta ? uint32_t(f.atlas.height) : view.height;
+    f.captureColor = target(cl, Format::RGBA8, w, h, layers, &f.targetBytes);
+    f.captureDepth = target(cl, Format::RG32F, w, h, layers, &f.targetBytes);
+  }
+  const ResourceId captureZ =
+      o.mode == Mode::Std ? kNone
+                          : target(cl, Format::D32F, o.mode == Mode::Rtta ? uint32_t(f.atlas.width) : view.width,
+                                   o.mode == Mode::Rtta ? uint32_t(f.atlas.height) : view.height, layers, &f.targetBytes);
+
+  cl.bindVertexBuffer(vb);
+  cl.setVertexLayout(sceneLayout());
+  DepthState depthOn;
+  depthOn.test = true;
+
+  if (o.mode == Mode::Std) {
+    RenderTarget rt;
+    rt.color[0] = f.screen;
+    rt.depth = screenDepth;
+    cl.setRenderTarget(rt);
+    cl.setViewport(vp);
+    cl.clearColor(0, view.clear);
+    cl.clearDepth(1.0f);
+    cl.setDepthState(depthOn);
+    cl.useProgram(texturedProg);
+    cl.setUniforms(0, mvp);
+    const std::vector<float> texMatrixAndAlpha{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+    cl.setUniforms(4, texMatrixAndAlpha);
+    const std::vector<float> opaque{0, 0, 1, 0};  // bias 0, no alpha test, alpha forced to 1
+    cl.setUniforms(8, opaque);
+    for (const DrawRun& r : runs) {
+      rec.bind(0, r.texture);
+      rec.tint(r.factor);
+      cl.draw(r.first, r.count);
+    }
+    return f;
+  }
+
+  // --- capture ---
+  RasterState clip;
+  clip.clipMask = 0x0f;
+  cl.setRasterState(clip);
+  cl.setDepthState(depthOn);
+  cl.useProgram(captureProg);
+  cl.setUniforms(0, mvp);
+  cl.bindTexture(0, recBuf);
+  auto clearCapture = [&] {
+    cl.clearColor(0, kAtlasClear);
+    cl.clearColor(1, kAtlasDepthClear);
+    cl.clearDepth(1.0f);
+  };
+  if (o.mode == Mode::Rtta) {
+    RenderTarget rt;
+    rt.color[0] = f.captureColor;
+    rt.color[1] = f.captureDepth;
+    rt.depth = captureZ;
+    rt.layer = kLayered;
+    cl.setRenderTarget(rt);
+    cl.setViewport({0, 0, f.atlas.width, f.atlas.height});
+    clearCapture();
+    for (const DrawRun& r : runs) {
+      rec.bind(1, r.texture);
+      rec.tint(r.factor);
+      cl.draw(r.first, r.count);
+    }
+  } else {
+    cl.setViewport(vp);
+    for (size_t layer = 0; layer < visible.size(); ++layer) {
+      RenderTarget rt;
+      rt.color[0] = f.captureColor;
+      rt.color[1] = f.captureDepth;
+      rt.depth = captureZ;
+      rt.layer = uint32_t(layer);
+      cl.setRenderTarget(rt);
+      clearCapture();
+      for (size_t m = 0; m < scene.tab.meshes.size(); ++m) {
+        const batching::TabMesh& mesh = scene.tab.meshes[m];
+        if (scene.meshObject[m] != visible[layer] || mesh.vertexCount == 0) continue;
+        rec.bind(1, textureOf(mesh));
+        rec.tint(mesh.factor);
+        cl.draw(mesh.firstVertex, mesh.vertexCount);
+      }
+    }
+  }
+  if (o.captureOnly) return f;
+
+  // --- composite ---
+  std::vector<uint32_t> order = visible;
+  std::vector<uint32_t> important = o.important;
+  if (o.composite == Composite::Ghosted && important.empty() && !visible.empty()) {
+    uint32_t best = visible[0];
+    for (uint32_t id : visible) {
+      const PixelRect &a = f.records[id].inner, &b = f.records[best].inner;
+      if (int64_t(a.width()) * a.height() > int64_t(b.width()) * b.height()) best = id;
+    }
+    important = {best};
+  }
+  for (uint32_t id : important)
+    if (id >= nObj) throw Error(fmt::format("--important {}: there are only {} objects", id, nObj));
+  f.important = important;
+  auto isImportant = [&](uint32_t id) { return std::find(important.begin(), important.end(), id) != important.end(); };
+  auto backToFront = [&](std::vector<uint32_t>& ids) {
+    auto dist2 = [&](uint32_t id) {
+      const glm::dvec3 c = (f.records[id].world.lo + f.records[id].world.hi) * 0.5 - view.eye;
+      return c.x * c.x + c.y * c.y + c.z * c.z;
+    };
+    std::stable_sort(ids.begin(), ids.end(), [&](uint32_t a, uint32_t b) {
+      const double da = dist2(a), db = dist2(b);
+      return da != db ? da > db : a < b;
+    });
+  };
+
+  std::vector<SpriteVertex> sprites;
+  std::vector<std::pair<uint32_t, uint32_t>> spriteOf(nObj, {0, 0});  // first vertex, count
+  for (size_t k = 0; k < visible.size(); ++k) {
+    const Record& r = f.records[visible[k]];
+    spriteOf[r.id] = {uint32_t(sprites.size()), 6};
+    if (o.mode == Mode::Rtta)
+      addSprite(sprites, r.viewport, vp, r.atlas.x0 - r.viewport.x0, r.atlas.y0 - r.viewport.y0, r.layer);
+    else
+      addSprite(sprites, r.viewport, vp, 0, 0, int32_t(k));
+  }
+  const ResourceId spriteVb = cl.createBuffer(BufferKind::Vertex, asBytes(sprites));
+  RenderTarget screen;
+  screen.color[0] = f.screen;
+  screen.depth = screenDepth;
+  cl.setRenderTarget(screen);
+  cl.setViewport(vp);
+  cl.setRasterState({});
+  cl.clearColor(0, view.clear);
+  cl.clearDepth(1.0f);
+  cl.useProgram(spriteProg);
+  cl.bindTexture(0, f.captureColor);
+  cl.bindTexture(1, f.captureDepth);
+  SamplerState nearest;
+  nearest.minFilter = Filter::Nearest;
+  nearest.magFilter = Filter::Nearest;
+  const ResourceId nearestSampler = cl.createSampler(nearest);
+  cl.bindSampler(0, nearestSampler);
+  cl.bindSampler(1, nearestSampler);
+  cl.bindVertexBuffer(spriteVb);
+  VertexLayout sl;
+  sl.stride = sizeof(SpriteVertex);
+  sl.attribs[0] = {0, 4, AttribType::F32, 0};
+  sl.attribs[2] = {2, 4, AttribType::F32, 16};
+  cl.setVertexLayout(sl);
+  rec.resetUniformCache();
+  BlendState over;
+  over.enabled = true;
+  over.srcRgb = BlendFactor::SrcAlpha;
+  over.dstRgb = BlendFactor::OneMinusSrcAlpha;
+  over.srcAlpha = BlendFactor::One;
+  over.dstAlpha = BlendFactor::OneMinusSrcAlpha;
+  auto drawSprites = [&](const std::vector<uint32_t>& ids) {
+    for (uint32_t id : ids) cl.draw(spriteOf[id].first, spriteOf[id].second);
+  };
+  if (o.composite == Composite::Depth) {
+    cl.setDepthState(depthOn);
+    rec.tint({1, 1, 1, 1});
+    // One draw: the sprites are consecutive in id order.
+    if (!sprites.empty()) cl.draw(0, uint32_t(sprites.size()));
+  } else if (o.composite == Composite::Transparent) {
+    cl.setBlendState(over);
+    rec.tint({1, 1, 1, kTransparentAlpha});
+    backToFront(order);
+    drawSprites(order);
+  } else {
+    std::vector<uint32_t> front, rest;
+    for (uint32_t id : visible) (isImportant(id) ? front : rest).push_back(id);
+    cl.setDepthState(depthOn);
+    rec.tint(kHighlightTint);
+    drawSprites(front);
+    cl.setDepthState({});
+    cl.setBlendState(over);
+    rec.tint({1, 1, 1, kGhostAlpha});
+    backToFront(rest);
+    drawSprites(rest);
+  }
+  return f;
+}
+
+}  // namespace tessera::rtta

@@ -1,0 +1,172 @@
+// RTTA capture and compositing on the oracle (rtta/rtta_record.h), on hand-built box scenes.
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "base/sha256.h"
+#include "mta/camera.h"
+#include "raster/cpu_backend.h"
+#include "rtta/rtta_record.h"
+#include "tests/rtta/box_scene.h"
+
+namespace tessera::rtta {
+namespace {
+
+constexpr uint32_t kW = 128, kH = 96;
+
+RttaView view() {
+  mta::Camera c;
+  c.eye = {1.5, 2.5, 7.0};
+  c.target = {0.5, 0.0, 0.0};
+  c.nearPlane = 0.5;
+  c.farPlane = 40.0;
+  RttaView v;
+  v.mvp = mta::viewProjection(c, kW, kH);
+  v.eye = c.eye;
+  v.width = kW;
+  v.height = kH;
+  return v;
+}
+
+struct Rendered {
+  RttaFrame frame;
+  std::unique_ptr<CpuBackend> be;
+};
+Rendered run(const RttaScene& s, const RttaOptions& o, int threads = 2) {
+  Rendered r{recordRttaFrame(s, view(), o), std::make_unique<CpuBackend>(RenderOptions{.threads = threads})};
+  r.be->execute(r.frame.list);
+  return r;
+}
+
+const uint8_t* pixel(const Rendered& r, ResourceId tex, uint32_t layer, int x, int y) {
+  return r.be->texture(tex)->texel(0, layer, uint32_t(x), uint32_t(y));
+}
+
+TEST(RttaCapture, EachRegionEqualsItsObjectRenderedAloneShifted) {
+  const auto specs = testing::fiveBoxes();
+  const RttaScene scene = testing::boxScene(specs, 4);
+  const Rendered atlas = run(scene, {.mode = Mode::Rtta, .captureOnly = true});
+  int compared = 0, covered = 0;
+  for (uint32_t k = 0; k < specs.size(); ++k) {
+    const Record& r = atlas.frame.records[k];
+    ASSERT_TRUE(r.visible()) << k;
+    const Rendered alone = run(testing::boxScene({specs[k]}, 4), {.mode = Mode::Std});
+    for (int y = r.viewport.y0; y < r.viewport.y1; ++y)
+      for (int x = r.viewport.x0; x < r.viewport.x1; ++x) {
+        const int ax = x + r.atlas.x0 - r.viewport.x0, ay = y + r.atlas.y0 - r.viewport.y0;
+        const uint8_t* a = pixel(atlas, atlas.frame.captureColor, uint32_t(r.layer), ax, ay);
+        const bool onScreen = x >= 0 && y >= 0 && x < int(kW) && y < int(kH);
+        float depth = 1.0f;
+        if (onScreen) std::memcpy(&depth, pixel(alone, alone.frame.screenDepth, 0, x, y), 4);
+        ++compared;
+        if (depth < 1.0f) {
+          ++covered;
+          const uint8_t* s = pixel(alone, alone.frame.screen, 0, x, y);
+          ASSERT_EQ(std::memcmp(a, s, 4), 0) << "object " << k << " pixel " << x << "," << y;
+          float z[2];
+          std::memcpy(z, pixel(atlas, atlas.frame.captureDepth, uint32_t(r.layer), ax, ay), 8);
+          EXPECT_EQ(z[0], depth) << "the captured window depth is the depth test's value";
+          EXPECT_EQ(z[1], 1.0f);
+        } else {
+          EXPECT_EQ(a[3], 0) << "object " << k << ": texel " << ax << "," << ay << " not covered alone but written";
+        }
+      }
+  }
+  EXPECT_GT(covered, 2000);
+  EXPECT_GT(compared, covered);
+}
+
+TEST(RttaCapture, NoFragmentLeavesItsRegionAndBordersKeepTheClearAlpha) {
+  const RttaScene scene = testing::boxScene(testing::fiveBoxes(), 4);
+  const Rendered atlas = run(scene, {.mode = Mode::Rtta, .params = {.border = 2}, .captureOnly = true});
+  const AtlasSize ta = atlas.frame.atlas;
+  int written = 0;
+  for (int32_t l = 0; l < ta.layers; ++l)
+    for (int y = 0; y < ta.height; ++y)
+      for (int x = 0; x < ta.width; ++x) {
+        const uint8_t* a = pixel(atlas, atlas.frame.captureColor, uint32_t(l), x, y);
+        if (a[3] == 0) continue;
+        ++written;
+        bool inside = false;
+        for (const Record& r : atlas.frame.records) {
+          if (r.layer != l) continue;
+          // Inside the region but off its border: the inner rectangle shifted into the atlas.
+          const int ix = x - (r.atlas.x0 - r.viewport.x0), iy = y - (r.atlas.y0 - r.viewport.y0);
+          inside = inside || r.inner.contains(ix, iy);
+        }
+        EXPECT_TRUE(inside) << "texel " << x << "," << y << " of layer " << l << " is outside every region's interior";
+      }
+  EXPECT_GT(written, 2000);
+}
+
+uint64_t differingPixels(const Rendered& a, ResourceId ta, const Rendered& b, ResourceId tb) {
+  uint64_t n = 0;
+  for (uint32_t y = 0; y < kH; ++y)
+    for (uint32_t x = 0; x < kW; ++x) n += std::memcmp(pixel(a, ta, 0, int(x), int(y)), pixel(b, tb, 0, int(x), int(y)), 4) != 0;
+  return n;
+}
+
+TEST(RttaComposite, DepthSpritesReproduceThePlainRendering) {
+  const RttaScene scene = testing::boxScene(testing::fiveBoxes(), 4);
+  const Rendered std_ = run(scene, {.mode = Mode::Std});
+  const Rendered rtta = run(scene, {.mode = Mode::Rtta});
+  const Rendered rtt = run(scene, {.mode = Mode::Rtt});
+  // No two boxes touch, so no depth ties between objects: every pixel is the plain rendering's.
+  EXPECT_EQ(differingPixels(std_, std_.frame.screen, rtta, rtta.frame.screen), 0u);
+  EXPECT_EQ(differingPixels(std_, std_.frame.screen, rtt, rtt.frame.screen), 0u);
+}
+
+TEST(RttaComposite, TransparentAndGhostedDifferFromThePlainRenderingOnlyWhereObjectsAre) {
+  const RttaScene scene = testing::boxScene(testing::fiveBoxes(), 4);
+  const Rendered std_ = run(scene, {.mode = Mode::Std});
+  for (Composite c : {Composite::Transparent, Composite::Ghosted}) {
+    const Rendered comp = run(scene, {.mode = Mode::Rtta, .composite = c});
+    uint64_t background = 0;
+    for (uint32_t y = 0; y < kH; ++y)
+      for (uint32_t x = 0; x < kW; ++x) {
+        float z;
+        std::memcpy(&z, pixel(std_, std_.frame.screenDepth, 0, int(x), int(y)), 4);
+        if (z < 1.0f) continue;
+        ++background;
+        EXPECT_EQ(std::memcmp(pixel(std_, std_.frame.screen, 0, int(x), int(y)), pixel(comp, comp.frame.screen, 0, int(x), int(y)), 4), 0);
+      }
+    EXPECT_GT(background, 1000u);
+    EXPECT_GT(differingPixels(std_, std_.frame.screen, comp, comp.frame.screen), 500u) << compositeName(c);
+  }
+}
+
+TEST(RttaFrames, BytesAreIdenticalAtOneTwoAndSevenThreads) {
+  const RttaScene scene = testing::boxScene(testing::fiveBoxes(), 4);
+  std::string first;
+  for (int threads : {1, 2, 7}) {
+    const Rendered r = run(scene, {.mode = Mode::Rtta, .composite = Composite::Ghosted}, threads);
+    const TextureData* t = r.be->texture(r.frame.screen);
+    const TextureData* a = r.be->texture(r.frame.captureDepth);
+    Sha256 h;
+    h.update(t->levels[0]);
+    h.update(a->levels[0]);
+    const auto digest = h.finish();
+    const std::string hex(digest.begin(), digest.end());
+    if (first.empty()) first = hex;
+    EXPECT_EQ(hex, first) << threads << " threads";
+  }
+}
+
+TEST(RttaFrames, RttTakesOnePassPerObjectAndRttaOne) {
+  const RttaScene scene = testing::boxScene(testing::fiveBoxes(), 4);
+  const RttaFrame rtt = recordRttaFrame(scene, view(), {.mode = Mode::Rtt});
+  const RttaFrame rtta = recordRttaFrame(scene, view(), {.mode = Mode::Rtta});
+  auto targets = [](const CommandList& cl) {
+    int n = 0;
+    for (const Command& c : cl.commands()) n += std::holds_alternative<SetRenderTarget>(c);
+    return n;
+  };
+  EXPECT_EQ(targets(rtt.list), 5 + 1);   // one per object, then the screen
+  EXPECT_EQ(targets(rtta.list), 1 + 1);  // the atlas, then the screen
+  EXPECT_EQ(rtt.targetBytes, uint64_t(kW) * kH * 5 * (4 + 8 + 4));
+  EXPECT_EQ(rtta.atlas.width, 256);      // smallest power of two >= 128 + 2
+  EXPECT_EQ(rtta.targetBytes, uint64_t(256) * 128 * uint64_t(rtta.atlas.layers) * (4 + 8 + 4));
+}
+
+}  // namespace
+}  // namespace tessera::rtta
