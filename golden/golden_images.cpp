@@ -1,6 +1,7 @@
 #include "golden/golden_images.h"
 
 #include "golden/railway_frames.h"
+#include "golden/rtta_railway_frames.h"
 #include "golden/tab_railway_frames.h"
 
 namespace tessera::golden {
@@ -27,6 +28,7 @@ void renderGoldenImages(const ImageSource& source, const std::string& railwayPat
   };
   visitFrames(railwayFrames(railwayPath), kRailwayScene);
   visitFrames(tabRailwayFrames(railwayPath), kTabRailwayScene);
+  visitFrames(rttaRailwayFrames(railwayPath), kRttaRailwayScene);
 }
 
 }  // namespace tessera::golden

@@ -15,14 +15,17 @@
 #include <vector>
 
 #include "golden/railway_frames.h"
+#include "golden/rtta_railway_frames.h"
 
 namespace tessera::golden {
 
 inline constexpr const char* kTabRailwayScene = "tab_railway";
 
-// Whether a manifest entry's scene is rendered from railway.glb (atlas tree or TAB frames) rather than
+// Whether a manifest entry's scene is rendered from railway.glb (atlas tree, TAB or RTTA frames) rather than
 // presented by a built-in scene.
-inline bool isRailwayScene(std::string_view scene) { return scene == kRailwayScene || scene == kTabRailwayScene; }
+inline bool isRailwayScene(std::string_view scene) {
+  return scene == kRailwayScene || scene == kTabRailwayScene || scene == kRttaRailwayScene;
+}
 
 // Throws Error naming the file when railway.glb is missing.
 std::vector<RailwayFrame> tabRailwayFrames(const std::string& railwayPath);
