@@ -74,6 +74,52 @@ case "$case_name" in
       [ "$want" = "$got" ] || fail "frame $f: $got, golden $want"
     done
     ;;
+  rtta_render_end_to_end)
+    "$tessera" rtta render five --frames 4 --size 96x72 --save-every 2 --border 2 -o r --quiet > table.json
+    for f in frames.json table.json plot.png index.html std_0000.png rtt_0002.png rtta_0003.png atlas_l0_0000.png \
+             rtta_0003.tframe rtt_0000.tframe std_0002.tframe; do
+      [ -s "r/$f" ] || fail "rtta render did not write $f"
+    done
+    [ "$(json_field table.json "['object_count']")" = "5" ] || fail "the five-object scene is not 5 objects"
+    [ "$(json_field table.json "['modes']['rtta']['render_target_changes_max']")" = "2.0" ] || fail "RTTA is not one atlas pass and one composite"
+    [ "$(json_field table.json "['modes']['rtt']['render_target_changes_max']")" = "6.0" ] || fail "RTT is not one pass per object"
+    [ "$(json_field table.json "['composite_vs_std_identical_percent_min']")" = "100.0" ] || fail "depth sprites do not reproduce STD"
+    [ "$(json_field table.json "['capture_vs_rtt_identical_percent']")" = "100.0" ] || fail "the atlas regions differ from RTT"
+    # A saved frame replays to the same image.
+    "$tessera" replay r/rtta_0003.tframe -o replay.png --stats replay.json > /dev/null
+    want=$(python3 -c "import json; print([r for r in json.load(open('r/frames.json'))['frames'] if r['frame'] == 3 and r['mode'] == 'rtta'][0]['image_sha256'])")
+    [ "$(json_field replay.json "['image_sha256']")" = "$want" ] || fail "the saved RTTA frame does not replay to its image"
+    "$tessera" rtta params "$src/data/railway.glb" --size 128x96 > params.json
+    [ "$(python3 -c "import json; print(len(json.load(open('params.json'))['records']))")" = "33" ] || fail "railway: not 33 records"
+    "$tessera" rtta render --help > help.txt
+    for word in "--composite" "--objects" "--layers" "--texturing" "--atlas" "--border" "ghosted"; do
+      grep -qF -- "$word" help.txt || fail "rtta render --help does not explain $word"
+    done
+    ;;
+  rtta_golden_command_reproduces_the_golden_frames)
+    "$tessera" rtta render "$src/data/railway.glb" --mode rtta --path orbit --frames 24 --size 256x192 --save-every 8 -o r --quiet > /dev/null
+    for f in 0 8 16 23; do
+      want=$(json_field "$src/golden/manifest.json" "['tests']['rtta_railway.f$(printf %03d $f)']['image_sha256']")
+      got=$(python3 -c "import json; print([r for r in json.load(open('r/frames.json'))['frames'] if r['frame'] == $f][0]['image_sha256'])")
+      [ "$want" = "$got" ] || fail "frame $f: $got, golden $want"
+    done
+    ;;
+  rtta_bad_input_exits_2)
+    refused 2 "--border -1" "$tessera" rtta render five --border -1 -o o1
+    refused 2 "--border 65" "$tessera" rtta render five --border 65 -o o1
+    refused 2 "--atlas: atlas 128x128: must hold the viewport 128x128 plus a border of 1" "$tessera" rtta render five --size 128x128 --atlas 128x128 -o o1
+    refused 2 "--mode 'nope'" "$tessera" rtta render five --mode nope -o o1
+    refused 2 "--composite ghosted-ao" "$tessera" rtta render five --composite ghosted-ao -o o1
+    refused 2 "--texturing tab" "$tessera" rtta render five --texturing tab -o o1
+    refused 2 "--objects 'x'" "$tessera" rtta render five --objects x -o o1
+    refused 2 "--layers 'lazy:0'" "$tessera" rtta render five --layers lazy:0 -o o1
+    refused 2 "--important 5: the scene has 5 objects" "$tessera" rtta render five --important 5 -o o1
+    refused 2 "nope.glb" "$tessera" rtta render nope.glb -o o1
+    refused 2 "nope.glb" "$tessera" rtta params nope.glb
+    printf 'not a path\n' > bad.path
+    refused 2 "bad.path" "$tessera" rtta render five --path bad.path -o o2
+    [ ! -e o1 ] || fail "a refused run left its output directory"
+    ;;
   tab_bad_input_exits_2)
     refused 2 "--a-max: 9 must be in 1..8" "$tessera" tab build "$src/data/railway.glb" -o x.tab --a-max 9
     [ ! -e x.tab ] || fail "a refused build left x.tab"

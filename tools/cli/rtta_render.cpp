@@ -218,13 +218,14 @@ nlohmann::json rttaParams(const RttaRenderArgs& a) {
 
 nlohmann::json runRttaRender(const RttaRenderArgs& a) {
   Setup s = validateArgs(a);
-  prepareOutputDirectory(a.out, "-o");
+  // Everything that can be refused is checked before the output directory is made.
   const LoadedRttaScene ls = loadRttaScene(a.input, a.objects, a.limits, a.quiet);
   const rtta::RttaScene& scene = ls.scene;
   for (uint32_t id : a.important)
     if (id >= scene.objectNames.size())
       throw Error("--important " + std::to_string(id) + ": the scene has " + std::to_string(scene.objectNames.size()) + " objects");
   const mta::CameraPath path = choosePath(a, scene.tab.bounds, scene.vertices.empty());
+  prepareOutputDirectory(a.out, "-o");
   CpuBackend backend(RenderOptions{a.threads});
   rtta::LayerAllocator allocator(s.layers);
   nlohmann::json rows = nlohmann::json::array();
