@@ -19,14 +19,14 @@ case "$case_name" in
   demo_writes_report_and_images)
     # The scenes half of the demo; demo_runs_the_atlas_tree_on_railway runs the other half, so that each
     # stays well inside its timeout in the ASan build on a loaded machine.
-    "$tessera" demo -o demo --threads 2 --no-mta --no-tab > stdout.json
+    "$tessera" demo -o demo --threads 2 --no-mta --no-tab --no-rtta > stdout.json
     for f in report.json index.html fill_fan.png city_block.png city_ids.exr city_ids.a1.exr city_block.tframe; do
       [ -s "demo/$f" ] || fail "demo did not write $f"
     done
     [ "$(json_field demo/report.json "['bit_identical_1_vs_n_threads']")" = "True" ] || fail "thread check failed"
     ;;
   demo_runs_the_atlas_tree_on_railway)
-    "$tessera" demo -o demo --threads 2 --no-gl --no-thread-check --no-tab --railway "$src/data/railway.glb" > stdout.json
+    "$tessera" demo -o demo --threads 2 --no-gl --no-thread-check --no-tab --no-rtta --railway "$src/data/railway.glb" > stdout.json
     for f in report.json index.html mta/render/plot.png mta/runs/runs.png mta/texel/histogram.png mta/render/frames.json; do
       [ -s "demo/$f" ] || fail "demo did not write $f"
     done
@@ -34,7 +34,7 @@ case "$case_name" in
       || fail "the demo's atlas tree magnifies beyond tau"
     ;;
   demo_runs_texture_array_batching_on_railway)
-    "$tessera" demo -o demo --threads 2 --no-gl --no-thread-check --no-mta --railway "$src/data/railway.glb" > stdout.json
+    "$tessera" demo -o demo --threads 2 --no-gl --no-thread-check --no-mta --no-rtta --railway "$src/data/railway.glb" > stdout.json
     for f in report.json index.html tab/railway.tab tab/render/plot.png tab/render/index.html tab/render/frames.json \
              tab/render/batched_0012.png tab/render/baseline_0012.tframe tab/render/diff_0012.png; do
       [ -s "demo/$f" ] || fail "demo did not write $f"
@@ -43,6 +43,15 @@ case "$case_name" in
       || fail "railway is not drawn in two geometry batches"
     [ "$(json_field demo/report.json "['texture_array_batching']['render']['baseline']['draw_calls_max']")" = "33.0" ] \
       || fail "the baseline does not draw each of the 33 meshes"
+    ;;
+  demo_runs_render_to_texture_atlas)
+    "$tessera" demo -o demo --threads 2 --no-gl --no-thread-check --no-mta --no-tab --railway "$src/data/railway.glb" > stdout.json
+    for f in report.json index.html rtta/five/index.html rtta/five/table.json rtta/five/rtta_0012.png rtta/five/atlas_l0_0012.png \
+             rtta/five_ghosted/rtta_0001.png rtta/railway/rtta_0006.png rtta/railway/atlas_l0_0006.png; do
+      [ -s "demo/$f" ] || fail "demo did not write $f"
+    done
+    [ "$(json_field demo/report.json "['render_to_texture_atlas']['railway']['object_count']")" = "33" ] || fail "railway is not 33 objects"
+    grep -qF "Render-to-texture-atlas" demo/index.html || fail "the demo page has no RTTA section"
     ;;
   tab_build_info_render_end_to_end)
     "$tessera" tab build "$src/data/railway.glb" -o rw.tab --quiet > build.json
@@ -346,7 +355,7 @@ PY
   output_in_the_way_exits_2)
     printf 'not a directory' > afile
     refused 2 "afile: exists and is not a directory (-o names the output directory)" \
-      "$tessera" demo -o afile --no-gl --no-mta --no-tab --no-thread-check
+      "$tessera" demo -o afile --no-gl --no-mta --no-tab --no-rtta --no-thread-check
     refused 2 "afile: exists and is not a directory" "$tessera" city --preset berlin --buildings 2 -o afile --quiet
     # The output directory is checked before the tree is opened (tree.mta does not even exist).
     refused 2 "afile/sub: cannot create the directory: afile is not a directory" \
@@ -364,11 +373,11 @@ PY
     refused 2 "afile/x.png" "$tessera" render blend -o afile/x.png
     refused 2 "afile/s.json" "$tessera" render blend --stats afile/s.json
     # Unwritable places: /proc refuses new entries even to root; a read-only directory refuses others.
-    refused 2 "/proc/tessera_cli_test: cannot create the directory" "$tessera" demo -o /proc/tessera_cli_test --no-gl --no-mta --no-tab
+    refused 2 "/proc/tessera_cli_test: cannot create the directory" "$tessera" demo -o /proc/tessera_cli_test --no-gl --no-mta --no-tab --no-rtta
     if [ "$(id -u)" != 0 ]; then
       mkdir ro && chmod 555 ro
-      refused 2 "ro/out: cannot create the directory: Permission denied" "$tessera" demo -o ro/out --no-gl --no-mta --no-tab
-      refused 2 "ro: cannot write into it" "$tessera" demo -o ro --no-gl --no-mta --no-tab
+      refused 2 "ro/out: cannot create the directory: Permission denied" "$tessera" demo -o ro/out --no-gl --no-mta --no-tab --no-rtta
+      refused 2 "ro: cannot write into it" "$tessera" demo -o ro --no-gl --no-mta --no-tab --no-rtta
       chmod 755 ro
     fi
     [ "$(cat afile)" = "not a directory" ] || fail "afile was changed"
@@ -376,7 +385,7 @@ PY
   threads_above_the_bound_exit_2)
     # One bound, kMaxThreads = 256 (docs/limits.md), for every --threads; checked before any work, so the
     # missing inputs below are never opened.
-    for cmd in "render blend" "replay none.tframe" "demo -o d --no-gl --no-mta --no-tab" "crosscheck blend" "visibility city_ids" \
+    for cmd in "render blend" "replay none.tframe" "demo -o d --no-gl --no-mta --no-tab --no-rtta" "crosscheck blend" "visibility city_ids" \
                "bench crosscheck blend" "mta build none.glb -o t.mta" "mta render none.mta -o r" "mta runs none.mta -o r" \
                "texel none.mta -o r"; do
       for n in 257 100000; do

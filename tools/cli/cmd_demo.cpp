@@ -20,6 +20,7 @@
 #include "tools/cli/frame_job.h"
 #include "tools/cli/gl_options.h"
 #include "tools/cli/mta_demo.h"
+#include "tools/cli/rtta_demo.h"
 #include "tools/cli/tab_demo.h"
 #include "tools/cli/options.h"
 #include "tools/cli/output_directory.h"
@@ -36,6 +37,7 @@ struct DemoArgs {
   bool gl = true;
   bool mta = true;
   bool tab = true;
+  bool rtta = true;
   std::string railway = "data/railway.glb";
   ResourceLimits limits;  // the scenes' frames (the atlas tree's frames are small and keep the default)
   gl::GlOptions glOptions;  // --gl-driver, --gl-version, --egl-platform
@@ -156,6 +158,11 @@ void runDemo(const DemoArgs& a) {
     report["texture_array_batching"] = t.report;
     mtaHtml += t.html;
   }
+  if (a.rtta) {
+    const RttaDemoResult r = runRttaDemo(a.outDir, a.railway, threads);
+    report["render_to_texture_atlas"] = r.report;
+    mtaHtml += r.html;
+  }
   report["bit_identical_1_vs_n_threads"] = allAgree;
   if (glb) report["gl_every_pixel_explained"] = allExplained;
   writeTextFile(a.outDir + "/report.json", report.dump(2) + "\n");
@@ -188,6 +195,7 @@ void addDemoCommand(CLI::App& app) {
   addGlBackendOptions(demo, a->glOptions);
   demo->add_flag("!--no-mta", a->mta, "Skip the atlas tree on railway.glb (build, render over the thesis path, runs, texel)");
   demo->add_flag("!--no-tab", a->tab, "Skip texture-array batching on railway.glb (build, render baseline and batched, compare)");
+  demo->add_flag("!--no-rtta", a->rtta, "Skip render-to-texture-atlas (STD / RTT / RTTA on the five-object scene and railway.glb)");
   demo->add_option("--railway", a->railway, "railway.glb, the real scene of the atlas tree and TAB demos (data/README.md)")->capture_default_str();
   demo->callback([a] {
     a->railway = repoPath(a->railway);  // found from the clone's root or beside the build folder
