@@ -210,3 +210,48 @@ TEST(ObjectGroups, GroupingNamesParseAndUnknownOnesAreErrors) {
 
 }  // namespace
 }  // namespace tessera::model
+
+namespace tessera::model {
+namespace {
+
+struct Counts {
+  size_t objects = 0, vertices = 0, faces = 0;
+};
+
+Counts tableOneCounts(const testing::ScratchDir& dir, CityPreset preset, uint32_t buildings) {
+  CityOptions o;
+  o.preset = preset;
+  o.buildings = buildings;
+  o.textureSize = 16;  // texture sizes never change the geometry
+  o.outDir = dir / cityPresetName(preset);
+  o.progress = false;
+  const Model m = loadModel(generateCity(o).gltf);
+  Counts c{.objects = groupObjects(m, ObjectGrouping::Node).size()};
+  for (const Mesh& mesh : m.meshes) c.vertices += mesh.positions.size(), c.faces += mesh.triangleCount();
+  return c;
+}
+
+// docs/model-import.md "RTTA inputs": the cities of Table 1's first two rows (#Obj 5 and 21).
+TEST(RttaTableOne, BerlinWithFourAndTwentyBuildingsHasFiveAndTwentyOneNodeObjects) {
+  testing::ScratchDir dir;
+  // Per building 4 wall quads and a roof quad (20 vertices, 10 triangles); per cell of the g x g grid
+  // (g = ceil(sqrt(N))) a lot quad and two street quads (12 vertices, 6 triangles).
+  const Counts five = tableOneCounts(dir, CityPreset::Berlin, 4);  // g = 2
+  EXPECT_EQ(five.objects, 5u);
+  EXPECT_EQ(five.vertices, 20u * 4 + 12u * 4);
+  EXPECT_EQ(five.faces, 10u * 4 + 6u * 4);
+  const Counts twentyOne = tableOneCounts(dir, CityPreset::Berlin, 20);  // g = 5
+  EXPECT_EQ(twentyOne.objects, 21u);
+  EXPECT_EQ(twentyOne.vertices, 20u * 20 + 12u * 25);
+  EXPECT_EQ(twentyOne.faces, 10u * 20 + 6u * 25);
+}
+
+TEST(RttaTableOne, ChemnitzWithFourAndTwentyBuildingsHasFiveAndTwentyOneNodeObjects) {
+  testing::ScratchDir dir;
+  // Block nodes have no mesh: the objects are the buildings and the ground.
+  EXPECT_EQ(tableOneCounts(dir, CityPreset::Chemnitz, 4).objects, 5u);
+  EXPECT_EQ(tableOneCounts(dir, CityPreset::Chemnitz, 20).objects, 21u);
+}
+
+}  // namespace
+}  // namespace tessera::model
