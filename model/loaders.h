@@ -51,9 +51,7 @@ void requireTextureFile(const std::string& modelPath, const std::string& what, c
 class ObjectSink {
  public:
   explicit ObjectSink(Model& out) : out_(out) {}
-  void begin(std::string name, int32_t node) {
-    name_ = std::move(name), node_ = node, added_ = false;
-  }
+  void begin(std::string name, int32_t node) { name_ = std::move(name), node_ = node, added_ = false; }
   void add(Mesh&& mesh) {
     if (!added_) {
       uint32_t instance = 0;

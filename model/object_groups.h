@@ -1,4 +1,4 @@
-// The objects of RTTA (docs/rtta.md, issue 12): which meshes of a Model are captured as one object.
+// The objects of RTTA (render-to-texture-atlas, issue 12): which meshes of a Model are captured as one object.
 //
 // Implements: groupObjects(), the two groupings of `tessera rtta --objects mesh|node`:
 // - Mesh: one object per model::Mesh, in model order (object i = mesh i), named after the mesh;

@@ -7,8 +7,8 @@
 
 #include "model/city_gen.h"
 #include "model/model.h"
-#include "model_test_util.h"
 #include "model/object_groups.h"
+#include "model_test_util.h"
 
 namespace tessera::model {
 namespace {
@@ -111,12 +111,14 @@ TEST(ObjectGroups, Ac3dObjectsWithTrianglesAreTheObjectsInFileOrder) {
   // Objects in file order: 0 world, 1 group "g" (no surfaces), 2 poly "two" (two materials), 3 poly
   // without a name.
   const std::string tri = "numvert 3\n0 0 0\n1 0 0\n0 1 0\n";
-  const std::string text = "AC3Db\nMATERIAL \"a\" rgb 1 1 1 amb 0 0 0 emis 0 0 0 spec 0 0 0 shi 0 trans 0\n"
-                           "MATERIAL \"b\" rgb 1 0 0 amb 0 0 0 emis 0 0 0 spec 0 0 0 shi 0 trans 0\n"
-                           "OBJECT world\nkids 2\nOBJECT group\nname \"g\"\nkids 1\nOBJECT poly\nname \"two\"\n" +
-                           tri + "numsurf 2\nSURF 0\nmat 0\nrefs 3\n0 0 0\n1 0 0\n2 0 0\nSURF 0\nmat 1\nrefs 3\n"
-                           "0 0 0\n2 0 0\n1 0 0\nkids 0\nOBJECT poly\n" +
-                           tri + "numsurf 1\nSURF 0\nmat 0\nrefs 3\n0 0 0\n1 0 0\n2 0 0\nkids 0\n";
+  const std::string text =
+      "AC3Db\nMATERIAL \"a\" rgb 1 1 1 amb 0 0 0 emis 0 0 0 spec 0 0 0 shi 0 trans 0\n"
+      "MATERIAL \"b\" rgb 1 0 0 amb 0 0 0 emis 0 0 0 spec 0 0 0 shi 0 trans 0\n"
+      "OBJECT world\nkids 2\nOBJECT group\nname \"g\"\nkids 1\nOBJECT poly\nname \"two\"\n" +
+      tri +
+      "numsurf 2\nSURF 0\nmat 0\nrefs 3\n0 0 0\n1 0 0\n2 0 0\nSURF 0\nmat 1\nrefs 3\n"
+      "0 0 0\n2 0 0\n1 0 0\nkids 0\nOBJECT poly\n" +
+      tri + "numsurf 1\nSURF 0\nmat 0\nrefs 3\n0 0 0\n1 0 0\n2 0 0\nkids 0\n";
   testing::writeFile(dir / "m.ac", text);
   const Model m = loadModel(dir / "m.ac");
   ASSERT_EQ(m.meshes.size(), 3u);
