@@ -69,7 +69,9 @@ class Builder {
       glm::dmat4 local(glm::dmat3(o.rot));
       local[3] = glm::dvec4(glm::dvec3(o.loc), 1.0);
       world[i] = o.parent < 0 ? local : compose(world[size_t(o.parent)], local);
-      if (o.triangles > 0) object(o, world[i]);
+      if (o.triangles == 0) continue;
+      objects_.begin(o.name.empty() ? "object" + std::to_string(i) : o.name, int32_t(i));
+      object(o, world[i]);
     }
   }
 
@@ -152,7 +154,7 @@ class Builder {
       }
     }
     for (auto& [key, mesh] : meshes)
-      if (!mesh.indices.empty()) out_.meshes.push_back(std::move(mesh));
+      if (!mesh.indices.empty()) objects_.add(std::move(mesh));
   }
 
   int32_t textureIndex(const ac3d::Object& o) {
@@ -192,6 +194,7 @@ class Builder {
   const ResourceLimits& limits_;
   ac3d::Tally& tally_;
   Model& out_;
+  ObjectSink objects_{out_};  // one object per AC3D object with triangles (docs/model-import.md "Objects")
   uint64_t work_ = kTriangulationWork;
   std::map<std::string, int32_t> textures_;
   std::map<std::tuple<uint64_t, int32_t, bool>, uint32_t> materials_;

@@ -135,6 +135,8 @@ class AssimpBuilder {
   void node(const aiNode& n, const glm::dmat4& parent, int depth) {
     if (depth > 1000) throw Error(path_ + ": the node hierarchy is deeper than 1000 levels");
     const glm::dmat4 world = compose(parent, toTransform(n.mTransformation));
+    const int32_t ordinal = nodes_++;
+    objects_.begin(n.mName.length ? n.mName.C_Str() : "node" + std::to_string(ordinal), ordinal);
     for (unsigned i = 0; i < n.mNumMeshes; ++i) {
       if (n.mMeshes[i] >= sc_.mNumMeshes)
         throw Error(path_ + ": node '" + std::string(n.mName.C_Str()) + "' names a missing mesh");
@@ -194,12 +196,14 @@ class AssimpBuilder {
       if (flip) std::swap(b, c);
       mesh.indices.insert(mesh.indices.end(), {a, b, c});
     }
-    if (!mesh.indices.empty()) out_.meshes.push_back(std::move(mesh));
+    if (!mesh.indices.empty()) objects_.add(std::move(mesh));
   }
 
   const std::string& path_;
   const aiScene& sc_;
   Model& out_;
+  ObjectSink objects_{out_};  // one object per node instance (docs/model-import.md "Objects")
+  int32_t nodes_ = 0;         // aiNodes visited so far: the next node's pre-order ordinal
   std::vector<UvChannel> uv_;
   std::map<std::string, int32_t> byRef_;
   int defaultMaterial_ = -1;

@@ -261,6 +261,7 @@ class Builder {
     const tinygltf::Node& n = m_.nodes[size_t(index)];
     if (n.mesh < 0) return;
     const tinygltf::Mesh& gm = m_.meshes[size_t(n.mesh)];  // checked by NodeGraph::check
+    objects_.begin(n.name.empty() ? "node" + std::to_string(index) : n.name, index);
     for (size_t p = 0; p < gm.primitives.size(); ++p)
       primitive(gm.primitives[p], "/meshes/" + std::to_string(n.mesh) + "/primitives/" + std::to_string(p),
                 (gm.name.empty() ? "mesh" + std::to_string(n.mesh) : gm.name) + "/" + std::to_string(p), world);
@@ -344,7 +345,7 @@ class Builder {
     } else {
       for (size_t i = 1; i + 1 < idx.size(); ++i) tri(idx[0], idx[i], idx[i + 1]);
     }
-    out_.meshes.push_back(std::move(mesh));
+    objects_.add(std::move(mesh));
   }
 
   const std::string& path_;
@@ -352,6 +353,7 @@ class Builder {
   const nlohmann::json& root_;
   const ResourceLimits& limits_;
   Model& out_;
+  ObjectSink objects_{out_};  // one object per node instance (docs/model-import.md "Objects")
   Reader reader_;
   std::vector<UvSource> uv_;  // per material
   int defaultMaterial_ = -1;

@@ -113,9 +113,11 @@ Model loadObj(const std::string& path, const ResourceLimits& limits) {
   }
   int32_t defaultMaterial = -1;
 
+  ObjectSink objects(out);  // one object per tinyobjloader shape (`o` / `g`), docs/model-import.md "Objects"
   const size_t nPos = attrib.vertices.size() / 3, nUv = attrib.texcoords.size() / 2, nN = attrib.normals.size() / 3;
   for (size_t s = 0; s < shapes.size(); ++s) {
     const tinyobj::mesh_t& sm = shapes[s].mesh;
+    objects.begin(shapes[s].name.empty() ? "shape" + std::to_string(s) : shapes[s].name, int32_t(s));
     // Faces grouped by material, in first-use order.
     std::map<int, Mesh> byMaterial;
     std::vector<int> order;
@@ -177,7 +179,7 @@ Model loadObj(const std::string& path, const ResourceLimits& limits) {
       mesh.name = shapes[s].name;
       if (nN == 0) mesh.normals.clear();
       if (nUv == 0) mesh.texcoords.clear();
-      out.meshes.push_back(std::move(mesh));
+      objects.add(std::move(mesh));
     }
   }
   return out;

@@ -8,6 +8,8 @@
 #include <glm/matrix.hpp>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "base/resource_limits.h"
 #include "model/model.h"
@@ -41,6 +43,36 @@ std::string resolveBeside(const std::string& modelPath, const std::string& relat
 // unless `resolved` is a regular file.
 void requireTextureFile(const std::string& modelPath, const std::string& what, const std::string& uri,
                         const std::string& resolved);
+
+// Appends meshes to a model with their scene-graph object (Model::objects). A loader calls begin() when
+// it enters an object (a node instance, an AC3D object, an OBJ shape) and add() for each of its meshes;
+// the object is appended with its first mesh, so objects without meshes never appear. `instance` counts
+// the objects made earlier from the same node.
+class ObjectSink {
+ public:
+  explicit ObjectSink(Model& out) : out_(out) {}
+  void begin(std::string name, int32_t node) { name_ = std::move(name), node_ = node, added_ = false; }
+  void add(Mesh&& mesh) {
+    if (!added_) {
+      uint32_t instance = 0;
+      if (node_ >= 0) {
+        if (size_t(node_) >= instances_.size()) instances_.resize(size_t(node_) + 1);
+        instance = instances_[size_t(node_)]++;
+      }
+      out_.objects.push_back(SceneObject{.name = name_, .node = node_, .instance = instance});
+      added_ = true;
+    }
+    mesh.object = uint32_t(out_.objects.size() - 1);
+    out_.meshes.push_back(std::move(mesh));
+  }
+
+ private:
+  Model& out_;
+  std::string name_;
+  int32_t node_ = -1;
+  bool added_ = false;
+  std::vector<uint32_t> instances_;
+};
 
 // Node transforms are glm::dmat4: column-major (m[c][r]) as glTF and Assimp store them, composed in
 // double and applied to float positions and normals.

@@ -24,6 +24,11 @@
 // - Triangles are uint32 index triples, counter-clockwise front faces (a transform with a negative
 //   determinant flips the winding back). Strips and fans are converted; points and lines are dropped
 //   with a note.
+// - Every mesh knows the scene-graph object it came from (Mesh::object, an index into Model::objects):
+//   one instance of a glTF node, one AC3D object, one OBJ shape (`o` / `g`), one instance of an
+//   Assimp node. The rule per format is in docs/model-import.md ("Objects"). A loader that splits one
+//   object into several meshes (one per material / primitive) gives them all the same object; the
+//   meshes of an object are consecutive in Model::meshes.
 #pragma once
 
 #include <array>
@@ -68,7 +73,19 @@ struct Mesh {
   std::vector<glm::vec2> texcoords;  // the set the material's texture uses (TEXCOORD_n / UV channel n)
   std::vector<glm::vec3> normals;
   std::vector<uint32_t> indices;  // 3 per triangle
+  uint32_t object = 0;            // index into Model::objects: the scene-graph object this mesh came from
   size_t triangleCount() const { return indices.size() / 3; }
+};
+
+// One scene-graph object that produced meshes: the unit RTTA's `--objects node` groups by
+// (model/object_groups.h). A node that the graph reaches twice (glTF instancing) is two objects with
+// the same `node` and instance 0 and 1: an object is an instance, since its two copies sit at two
+// places on screen.
+struct SceneObject {
+  std::string name;       // the node's / object's / shape's name, or "<kind><index>" when the file gives none
+  int32_t node = -1;      // the file's index of it: glTF node index, AC3D object (file order, the world
+                          // object 0), OBJ shape, Assimp node in depth-first pre-order (root 0)
+  uint32_t instance = 0;  // 0 for the first object made from `node`, 1 for the second instance, ...
 };
 
 // What an image's header says (probeTexture()).
@@ -102,6 +119,9 @@ struct TextureRef {
 struct Model {
   std::vector<Material> materials;
   std::vector<Mesh> meshes;
+  // In the order of their first mesh; each has at least one mesh and its meshes are consecutive, so
+  // Mesh::object never decreases along `meshes`.
+  std::vector<SceneObject> objects;
   std::vector<TextureRef> textures;  // one per distinct image
   Bounds bounds;                     // of every position of every mesh
   std::string source;                // the file it was read from
