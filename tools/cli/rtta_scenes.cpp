@@ -4,25 +4,28 @@
 
 #include "base/error.h"
 #include "batching/input_batches.h"
+#include "model/five_objects.h"
 #include "model/model.h"
+#include "model/object_groups.h"
 
 namespace tessera::cli {
 
-std::vector<std::string> builtinRttaSceneNames() { return {}; }
+std::vector<std::string> builtinRttaSceneNames() { return {"five"}; }
 
 LoadedRttaScene loadRttaScene(const std::string& input, const std::string& objects, const ResourceLimits& limits, bool quiet) {
-  const model::Model m = model::loadModel(input, limits);
+  const model::ObjectGrouping grouping = model::parseObjectGrouping(objects);
+  const model::Model m = input == "five" ? model::fiveObjectModel() : model::loadModel(input, limits);
   batching::InputOptions io;
   if (!quiet)
     io.progress = [](size_t done, size_t total) {
       if (done == total) std::fprintf(stderr, "rtta: %zu textures decoded with mip chains\n", total);
     };
+  const std::vector<model::ObjectGroup> groups = model::groupObjects(m, grouping);
   std::vector<uint32_t> objectOf(m.meshes.size());
   std::vector<std::string> names;
-  if (objects != "mesh") throw Error("--objects " + objects + ": not available yet");
-  for (size_t i = 0; i < m.meshes.size(); ++i) {
-    objectOf[i] = uint32_t(i);
-    names.push_back(m.meshes[i].name.empty() ? "mesh " + std::to_string(i) : m.meshes[i].name);
+  for (uint32_t g = 0; g < groups.size(); ++g) {
+    names.push_back(groups[g].name);
+    for (uint32_t mesh : groups[g].meshes) objectOf[mesh] = g;
   }
   return {rtta::makeRttaScene(batching::prepareInput(m, io), objectOf, std::move(names))};
 }
