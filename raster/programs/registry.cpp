@@ -12,12 +12,14 @@ const Program& textured();
 const Program& texarrayBatch();
 const Program& atlasDisplace();
 const Program& objectId();
+const Program& atlasCapture();
 }  // namespace programs
 
-static const std::array<const Program*, 6>& table() {
-  static const std::array<const Program*, 6> t = {&programs::flatColor(),   &programs::vertexColor(),
-                                                  &programs::textured(),    &programs::texarrayBatch(),
-                                                  &programs::atlasDisplace(), &programs::objectId()};
+static const std::array<const Program*, 7>& table() {
+  static const std::array<const Program*, 7> t = {&programs::flatColor(),     &programs::vertexColor(),
+                                                  &programs::textured(),      &programs::texarrayBatch(),
+                                                  &programs::atlasDisplace(), &programs::objectId(),
+                                                  &programs::atlasCapture()};
   return t;
 }
 
