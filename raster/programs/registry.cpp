@@ -13,13 +13,14 @@ const Program& texarrayBatch();
 const Program& atlasDisplace();
 const Program& objectId();
 const Program& atlasCapture();
+const Program& atlasSprite();
 }  // namespace programs
 
-static const std::array<const Program*, 7>& table() {
-  static const std::array<const Program*, 7> t = {&programs::flatColor(),     &programs::vertexColor(),
+static const std::array<const Program*, 8>& table() {
+  static const std::array<const Program*, 8> t = {&programs::flatColor(),     &programs::vertexColor(),
                                                   &programs::textured(),      &programs::texarrayBatch(),
                                                   &programs::atlasDisplace(), &programs::objectId(),
-                                                  &programs::atlasCapture()};
+                                                  &programs::atlasCapture(),  &programs::atlasSprite()};
   return t;
 }
 
