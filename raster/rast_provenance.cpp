@@ -133,6 +133,10 @@ inline DepthOutcome depthOutcome(const CandidateDepth& d, const PixelUpdate& u) 
   if (u.depthSig != 0 && d.sig == u.depthSig) return {depthPasses(u.func, u.z, u.z), false};
   const bool pass = depthPasses(u.func, u.z, d.lo);
   if (u.func == CompareFunc::Always || u.func == CompareFunc::Never) return {pass, false};
+  // A fragment depth known exactly (a program-written depth from exact texels, F11: zTol = 0) against an
+  // exactly known stored depth is the same comparison in every GL: no tie. Interpolated depths always
+  // have zTol > 0, so this changes nothing for them.
+  if (u.zTol == 0.0 && d.lo == d.hi && !u.depthUnbounded) return {pass, false};
   const bool tie = u.depthUnbounded || (double(u.z) + u.zTol >= double(d.lo) && double(u.z) - u.zTol <= double(d.hi));
   return {pass, tie};
 }
