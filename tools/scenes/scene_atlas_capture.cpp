@@ -5,6 +5,11 @@
 // half (x' = 0.5 x -/+ 0.5 w), clipped by the undisplaced position's four side planes; a fifth box
 // has a record without a layer and is dropped. The target stays bound, so all four images (two
 // attachments x two layers) are presented and cross-checked: the RG32F images hold gl_FragCoord.z.
+// Back faces are culled and object 0 is two interpenetrating boxes: the depth test then rejects
+// fragments in layer 0 only. A layer-1 fragment that fails the depth test would trigger softpipe's
+// known layered-colour-to-layer-0 bug (docs/softpipe-edge-flips.md §1, pinned by layered_target),
+// whose stray texels in layer 0 no expectation can cover here (nothing else writes them); this frame
+// is meant to test gl_FragCoord.z and the attachments on both implementations, not that bug again.
 #include "tools/scenes/scene_common.h"
 
 namespace tessera::scenes {
@@ -40,6 +45,7 @@ void buildAtlasCapture(CommandList& cl, int w, int h) {
   Mesh m;
   const glm::vec3 centres[5] = {{-0.6f, -0.3f, 0}, {0.5f, 0.4f, -0.5f}, {0.1f, 0.0f, 0.6f}, {-0.2f, 0.6f, -1.0f}, {0, 0, 0}};
   for (uint32_t i = 0; i < 5; ++i) captureBox(m, centres[i], 0.45f, i);
+  captureBox(m, {-0.9f, 0.05f, 0.0f}, 0.3f, 0);  // object 0: a second box, through the first one
   bindMesh(cl, m);
   // Records: object i < 4 -> layer i / 2, left or right half: x' = 0.5 x -/+ 0.5 w, y' = y; object 4
   // has layer -1 (no layer: the geometry stage drops its triangles).
@@ -58,6 +64,7 @@ void buildAtlasCapture(CommandList& cl, int w, int h) {
   setVec4(cl, 7, {1, 1, 1, 1});
   RasterState rs;
   rs.clipMask = 0x0f;
+  rs.cull = CullMode::Back;
   cl.setRasterState(rs);
   DepthState ds;
   ds.test = true;
@@ -69,6 +76,7 @@ void buildAtlasCapture(CommandList& cl, int w, int h) {
     const std::array<uint8_t, 4> a = {uint8_t(80 + 40 * i), uint8_t(220 - 40 * i), uint8_t(120 + 30 * (i & 1)), 255};
     cl.bindTexture(1, uploadTexture(cl, checker(32, 32, 4, a, {40, 40, 40, 128}), true));
     cl.drawIndexed(i * 36, 36);
+    if (i == 0) cl.drawIndexed(5 * 36, 36);  // object 0's second box, same texture
   }
 }
 
