@@ -14,13 +14,15 @@ const Program& atlasDisplace();
 const Program& objectId();
 const Program& atlasCapture();
 const Program& atlasSprite();
+const Program& atlasCaptureTab();
 }  // namespace programs
 
-static const std::array<const Program*, 8>& table() {
-  static const std::array<const Program*, 8> t = {&programs::flatColor(),     &programs::vertexColor(),
+static const std::array<const Program*, 9>& table() {
+  static const std::array<const Program*, 9> t = {&programs::flatColor(),     &programs::vertexColor(),
                                                   &programs::textured(),      &programs::texarrayBatch(),
                                                   &programs::atlasDisplace(), &programs::objectId(),
-                                                  &programs::atlasCapture(),  &programs::atlasSprite()};
+                                                  &programs::atlasCapture(),  &programs::atlasSprite(),
+                                                  &programs::atlasCaptureTab()};
   return t;
 }
 
