@@ -10,6 +10,10 @@
 // known layered-colour-to-layer-0 bug (docs/softpipe-edge-flips.md §1, pinned by layered_target),
 // whose stray texels in layer 0 no expectation can cover here (nothing else writes them); this frame
 // is meant to test gl_FragCoord.z and the attachments on both implementations, not that bug again.
+// atlas_capture_tab: the same objects batched (texture-array batching): one draw through
+// atlas_capture_tab, the textures as layers of one array, so each region should hold what
+// atlas_capture puts there (up to the lookup's legal freedoms: textureGrad with the quad's derivatives).
+#include "raster/texture.h"
 #include "tools/scenes/scene_common.h"
 
 namespace tessera::scenes {
@@ -17,7 +21,9 @@ namespace tessera::scenes {
 namespace {
 void captureBox(Mesh& m, glm::vec3 c, float e, uint32_t id) {
   const float x0 = c.x - e, x1 = c.x + e, y0 = c.y - e, y1 = c.y + e, z0 = c.z - e, z1 = c.z + e;
-  const glm::vec4 t0{0, 0, 0, 0}, t1{1, 0, 0, 0}, t2{1, 1, 0, 0}, t3{0, 1, 0, 0};
+  // texcoord (s, t, TAM entry = object id): atlas_capture reads (s, t), atlas_capture_tab all three.
+  const float e3 = float(id);
+  const glm::vec4 t0{0, 0, e3, 0}, t1{1, 0, e3, 0}, t2{1, 1, e3, 0}, t3{0, 1, e3, 0};
   m.quad({x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}, {x0, y1, z1}, t0, t1, t2, t3, id);  // +z
   m.quad({x1, y0, z0}, {x0, y0, z0}, {x0, y1, z0}, {x1, y1, z0}, t0, t1, t2, t3, id);  // -z
   m.quad({x1, y0, z1}, {x1, y0, z0}, {x1, y1, z0}, {x1, y1, z1}, t0, t1, t2, t3, id);  // +x
@@ -27,7 +33,10 @@ void captureBox(Mesh& m, glm::vec3 c, float e, uint32_t id) {
 }
 }  // namespace
 
-void buildAtlasCapture(CommandList& cl, int w, int h) {
+// Both capture scenes: `tab` draws every box in one draw through atlas_capture_tab (one 5-layer
+// texture array on unit 1, an RG32F TAM on unit 0 naming layer i for entry i, the records on unit 9);
+// otherwise one draw per object through atlas_capture (records on unit 0, the object's texture on 1).
+void buildCapture(CommandList& cl, int w, int h, bool tab) {
   const ResourceId color = createTarget(cl, Format::RGBA8, w, h, 2);
   const ResourceId depthColor = createTarget(cl, Format::RG32F, w, h, 2);
   const ResourceId depth = createTarget(cl, Format::D32F, w, h, 2);
@@ -58,8 +67,8 @@ void buildAtlasCapture(CommandList& cl, int w, int h) {
   rd.format = Format::RGBA32F;
   rd.width = uint32_t(rec.size() / 4);
   rd.buffer = cl.createBuffer(BufferKind::Texel, recBytes);
-  cl.bindTexture(0, cl.createTexture(rd));
-  cl.useProgram(cl.createProgram("atlas_capture"));
+  cl.bindTexture(tab ? 9 : 0, cl.createTexture(rd));
+  cl.useProgram(cl.createProgram(tab ? "atlas_capture_tab" : "atlas_capture"));
   setMatrix(cl, 0, mul(perspective(60.0, double(w) / 2.0 / double(h), 0.1, 20.0), lookAt({1.2f, 1.5f, 3.0f}, {0, 0, 0}, {0, 1, 0})));
   setVec4(cl, 7, {1, 1, 1, 1});
   RasterState rs;
@@ -72,12 +81,41 @@ void buildAtlasCapture(CommandList& cl, int w, int h) {
   SamplerState s;
   s.minFilter = Filter::LinearMipmapLinear;
   cl.bindSampler(1, cl.createSampler(s));
-  for (uint32_t i = 0; i < 5; ++i) {
+  auto image = [](uint32_t i) {
     const std::array<uint8_t, 4> a = {uint8_t(80 + 40 * i), uint8_t(220 - 40 * i), uint8_t(120 + 30 * (i & 1)), 255};
-    cl.bindTexture(1, uploadTexture(cl, checker(32, 32, 4, a, {40, 40, 40, 128}), true));
+    return checker(32, 32, 4, a, {40, 40, 40, 128});
+  };
+  if (tab) {
+    TextureDesc d;
+    d.kind = TextureKind::Tex2DArray;
+    d.width = d.height = 32;
+    d.layers = 5;
+    d.levels = fullMipCount(32, 32);
+    const ResourceId array = cl.createTexture(d);
+    for (uint32_t i = 0; i < 5; ++i) {
+      const auto chain = buildMipChainRGBA8(32, 32, image(i).rgba);
+      for (uint32_t lev = 0; lev < chain.size(); ++lev) cl.uploadTexture(array, lev, i, chain[lev]);
+    }
+    std::vector<float> tam;
+    for (uint32_t i = 0; i < 5; ++i) tam.insert(tam.end(), {0, float(i)});
+    TextureDesc td;
+    td.kind = TextureKind::Buffer;
+    td.format = Format::RG32F;
+    td.width = 5;
+    td.buffer = cl.createBuffer(BufferKind::Texel, std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(tam.data()), tam.size() * sizeof(float)));
+    cl.bindTexture(0, cl.createTexture(td));
+    cl.bindTexture(1, array);
+    cl.drawIndexed(0, 6 * 36);  // every box, one draw
+    return;
+  }
+  for (uint32_t i = 0; i < 5; ++i) {
+    cl.bindTexture(1, uploadTexture(cl, image(i), true));
     cl.drawIndexed(i * 36, 36);
     if (i == 0) cl.drawIndexed(5 * 36, 36);  // object 0's second box, same texture
   }
 }
+
+void buildAtlasCapture(CommandList& cl, int w, int h) { buildCapture(cl, w, h, false); }
+void buildAtlasCaptureTab(CommandList& cl, int w, int h) { buildCapture(cl, w, h, true); }
 
 }  // namespace tessera::scenes

@@ -36,6 +36,7 @@ void buildDepthTies(CommandList& cl, int w, int h);
 void buildFarVertices(CommandList& cl, int w, int h);
 void buildAlphaMask(CommandList& cl, int w, int h);
 void buildAtlasCapture(CommandList& cl, int w, int h);
+void buildAtlasCaptureTab(CommandList& cl, int w, int h);
 void buildAtlasSprites(CommandList& cl, int w, int h);
 
 }  // namespace tessera::scenes
