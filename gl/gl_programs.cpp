@@ -188,7 +188,12 @@ LinkedProgram ProgramCompiler::link(std::string_view name) {
   // Without glGetProgramInterfaceiv (a 3.3 context without ARB_program_interface_query) the check
   // is skipped; the 4.5 path always makes it.
   GLint outputs = cpu->colorOutputs();
-  if (interfaceQuery_) glGetProgramInterfaceiv(p.name, GL_PROGRAM_OUTPUT, GL_ACTIVE_RESOURCES, &outputs);
+  if (interfaceQuery_) {
+    glGetProgramInterfaceiv(p.name, GL_PROGRAM_OUTPUT, GL_ACTIVE_RESOURCES, &outputs);
+    // gl_FragDepth is an active output too (GL 4.6 §7.3.1.1 lists built-in outputs), but no colour
+    // output: a program that writes depth (Program::writesDepth, spec-choices F11) has one more.
+    if (cpu->writesDepth()) outputs -= 1;
+  }
   p.colorOutputs = cpu->colorOutputs();
   if (outputs != p.colorOutputs) {
     glDeleteProgram(p.name);

@@ -18,6 +18,10 @@ namespace tessera::detail {
 
 bool depthPasses(CompareFunc f, float incoming, float stored);
 
+// A program-written fragment depth (gl_FragDepth) as the depth test and write see it: clamped to the
+// depth range [0, 1], NaN -> 0 (docs/spec-choices.md F11; GL 4.6 §15.2.3, §17.3.4).
+inline float clampFragDepth(float z) { return z > 0.0f ? (z < 1.0f ? z : 1.0f) : 0.0f; }
+
 // NaN-safe unorm8 conversion: clamp to [0, 1] (NaN -> 0), then round half to even of c * 255.
 uint8_t toUnorm8(double c);
 

@@ -10,6 +10,9 @@
 //   texture lookups take their derivatives from the quad, like GLSL's texture().
 // - Stages are called once per batch (vertices of a draw, quads of a triangle in a tile), never per
 //   pixel through a virtual call.
+// - Fragment depth: every quad carries its window depth per pixel (Quad::z, gl_FragCoord.z). A
+//   program that declares writesDepth() sets QuadOut::depth (gl_FragDepth); the depth test and the
+//   depth write then use that value, clamped to the depth range (docs/spec-choices.md F11).
 // Does not implement: the pipeline around them (cpu_backend.h).
 #pragma once
 
@@ -48,6 +51,11 @@ struct VertexOut {
 struct Quad {
   int32_t x, y;
   uint8_t coverage;                  // bit p: pixel p is inside the primitive
+  // gl_FragCoord.z per pixel: the window depth z_w of GL 4.6 §15.2.2 ("Shader Inputs": gl_FragCoord
+  // holds (x_w, y_w, z_w, 1/w_c)), i.e. exactly the value the depth test compares (§17.3.4) when the
+  // program writes no depth: interpolated without perspective (§14.6.1) from the vertices' z_w of
+  // §13.8.1, depth range [0, 1]. Helper pixels get the same plane extrapolated.
+  float z[4];
   float var[4][kMaxVaryings];        // interpolated varyings per pixel
 };
 
@@ -55,6 +63,10 @@ struct QuadOut {
   // Per attachment, per pixel, RGBA as float bits or uint (decided by the attachment's format).
   union Value { float f[4]; uint32_t u[4]; };
   Value color[kMaxColorAttachments][4];
+  // gl_FragDepth per pixel, read only for a program whose writesDepth() is true. The pipeline presets
+  // it to Quad::z before the call, so a pixel the program leaves alone keeps the interpolated depth
+  // (GL leaves it undefined, GL 4.6 §15.2.3; docs/spec-choices.md F11).
+  float depth[4];
   uint8_t discard;  // bit p: pixel p discarded by the program
 };
 
@@ -75,6 +87,13 @@ class Program {
   virtual int varyingCount() const = 0;      // smooth varyings used, <= kMaxVaryings
   virtual int colorOutputs() const { return 1; }
   virtual bool hasGeometryStage() const { return false; }
+  // The fragment stage writes QuadOut::depth (gl_FragDepth): the depth test runs after shading, on
+  // that value (docs/spec-choices.md F11). Programs that do not write depth keep the early test.
+  virtual bool writesDepth() const { return false; }
+  // The fragment stage reads Quad::z (gl_FragCoord.z). Provenance mode then runs its lower- and
+  // upper-bound passes on z -/+ the depth precision (docs/crosscheck.md, DEPTH_NEAR_EQUAL), so the
+  // program must be monotone (non-decreasing) in z, as it must be in what it samples.
+  virtual bool readsFragDepth() const { return false; }
 
   virtual void shadeVertices(std::span<const VertexIn> in, std::span<VertexOut> out, const ShadeContext& ctx) const = 0;
   // Optional geometry stage, once per triangle after vertex shading and before clipping. May change

@@ -96,7 +96,8 @@ void clearLod(const Scene& scene, const ClearCmd& c, const TileRect& tile) {
 class TriangleRasterizer {
  public:
   TriangleRasterizer(const Scene& scene, const TriSetup& t, RastScratch& s, PipelineStats& stats)
-      : scene_(scene), t_(t), ds_(*scene.states[t.drawState]), s_(s), stats_(stats) {}
+      : scene_(scene), t_(t), ds_(*scene.states[t.drawState]), s_(s), stats_(stats),
+        lateDepth_(ds_.program->writesDepth()) {}
 
   void run(const TileRect& tile) {
     const int32_t x0 = std::max(t_.minX, tile.x0), x1 = std::min(t_.maxX, tile.x1);
@@ -153,21 +154,23 @@ class TriangleRasterizer {
     const size_t n = count_;
     Quad& q = s_.quads[n];
     q.x = qx, q.y = qy, q.coverage = cov;
-    auto& z = s_.depth[n];
     uint8_t live = cov;
-    for (int p = 0; p < 4; ++p) z[p] = interpolatePixel(t_, ds_.varyings, e[p], q.var[p]);
+    // Quad::z is gl_FragCoord.z and the value the depth test compares (the same float).
+    for (int p = 0; p < 4; ++p) q.z[p] = interpolatePixel(t_, ds_.varyings, e[p], q.var[p]);
     const TargetView& tv = scene_.target;
-    if (ds_.depth.test && tv.depth) {
+    if (ds_.depth.test && tv.depth && !lateDepth_) {
       for (int p = 0; p < 4; ++p) {
         if (!(live >> p & 1)) continue;
         const float stored = loadDepth(*tv.depth, tv.level, t_.layer, qx + (p & 1), qy + (p >> 1));
-        if (!depthPasses(ds_.depth.func, z[p], stored)) live &= uint8_t(~(1u << p));
+        if (!depthPasses(ds_.depth.func, q.z[p], stored)) live &= uint8_t(~(1u << p));
       }
       stats_.fragments_depth_failed += uint64_t(std::popcount(uint32_t(cov & ~live)));
       if (!live) return;  // no pixel can change: skip shading (no side effects are lost)
     }
     s_.live[n] = live;
     s_.outs[n].discard = 0;
+    // A program that writes depth and leaves a pixel alone keeps the interpolated depth (F11).
+    if (lateDepth_) std::memcpy(s_.outs[n].depth, q.z, sizeof q.z);
     // The LOD probe shades one quad per call, so the sampler's log holds exactly that quad's lookups.
     if (++count_ == RastScratch::kBatch || scene_.lod) flush();
   }
@@ -179,18 +182,30 @@ class TriangleRasterizer {
     if (scene_.lod) s_.lodLog.count = 0;
     ds_.program->shadeQuads(batch, ds_.ctx);
     const TargetView& tv = scene_.target;
-    const bool depthWrite = ds_.depth.test && ds_.depth.write && tv.depth;
+    const bool depthTest = ds_.depth.test && tv.depth;
+    const bool depthWrite = depthTest && ds_.depth.write;
     for (size_t n = 0; n < count_; ++n) {
       const Quad& q = s_.quads[n];
-      const uint8_t keep = uint8_t(s_.live[n] & ~s_.outs[n].discard);
+      uint8_t keep = uint8_t(s_.live[n] & ~s_.outs[n].discard);
       stats_.quads_shaded += 1;
       stats_.fragments_shaded += uint64_t(std::popcount(uint32_t(s_.live[n])));
       stats_.helper_invocations += uint64_t(4 - std::popcount(uint32_t(s_.live[n])));
       stats_.fragments_discarded += uint64_t(std::popcount(uint32_t(s_.live[n] & s_.outs[n].discard)));
+      // The fragment's depth: the program's gl_FragDepth, clamped (spec-choices F11), tested late.
+      float z[4];
+      for (int p = 0; p < 4; ++p) z[p] = lateDepth_ ? clampFragDepth(s_.outs[n].depth[p]) : q.z[p];
+      if (lateDepth_ && depthTest) {
+        const uint8_t before = keep;
+        for (int p = 0; p < 4; ++p)
+          if ((keep >> p & 1) &&
+              !depthPasses(ds_.depth.func, z[p], loadDepth(*tv.depth, tv.level, t_.layer, q.x + (p & 1), q.y + (p >> 1))))
+            keep &= uint8_t(~(1u << p));
+        stats_.fragments_depth_failed += uint64_t(std::popcount(uint32_t(before & ~keep)));
+      }
       for (int p = 0; p < 4; ++p) {
         if (!(keep >> p & 1)) continue;
         const int32_t x = q.x + (p & 1), y = q.y + (p >> 1);
-        if (depthWrite) storeDepth(*tv.depth, tv.level, t_.layer, x, y, s_.depth[n][p]);
+        if (depthWrite) storeDepth(*tv.depth, tv.level, t_.layer, x, y, z[p]);
         for (int a = 0; a < ds_.colorOutputs; ++a) {
           TextureData* c = tv.color[size_t(a)];
           if (!c) continue;
@@ -229,6 +244,7 @@ class TriangleRasterizer {
   const DrawState& ds_;
   RastScratch& s_;
   PipelineStats& stats_;
+  const bool lateDepth_;  // the program writes gl_FragDepth: the depth test runs after shading (F11)
   size_t count_ = 0;
 };
 

@@ -4,7 +4,8 @@
 // blocks (trivial reject / full-block fast path without per-pixel edge tests) of 2x2 quads with
 // exact int64 edge tests at pixel centres, perspective-correct interpolation in double from the
 // exact edge values (helper pixels extrapolated the same way), early depth test (equivalent to the
-// late test: programs never write depth), fragment shading in batches, then fragops.h per pixel.
+// late test for programs that write no depth; a program that writes gl_FragDepth gets the late test
+// on its value, spec-choices F11), fragment shading in batches, then fragops.h per pixel.
 // A tile owns its pixels, so tiles run in parallel and the result is independent of thread count.
 // Does not implement: setup or binning (setup.h).
 #pragma once
@@ -22,7 +23,6 @@ struct RastScratch {
   std::vector<Quad> quads = std::vector<Quad>(kBatch);
   std::vector<QuadOut> outs = std::vector<QuadOut>(kBatch);
   std::vector<uint8_t> live = std::vector<uint8_t>(kBatch);  // covered and depth-passed pixels
-  std::vector<std::array<float, 4>> depth = std::vector<std::array<float, 4>>(kBatch);
   LodQuadLog lodLog;  // LOD probe: the lookups of the quad being shaded (Scene::lod)
 };
 

@@ -133,6 +133,10 @@ inline DepthOutcome depthOutcome(const CandidateDepth& d, const PixelUpdate& u) 
   if (u.depthSig != 0 && d.sig == u.depthSig) return {depthPasses(u.func, u.z, u.z), false};
   const bool pass = depthPasses(u.func, u.z, d.lo);
   if (u.func == CompareFunc::Always || u.func == CompareFunc::Never) return {pass, false};
+  // A fragment depth known exactly (a program-written depth from exact texels, F11: zTol = 0) against an
+  // exactly known stored depth is the same comparison in every GL: no tie. Interpolated depths always
+  // have zTol > 0, so this changes nothing for them.
+  if (u.zTol == 0.0 && d.lo == d.hi && !u.depthUnbounded) return {pass, false};
   const bool tie = u.depthUnbounded || (double(u.z) + u.zTol >= double(d.lo) && double(u.z) - u.zTol <= double(d.hi));
   return {pass, tie};
 }
@@ -572,7 +576,9 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
   du.depthWrite = depthWrite;
   du.depthUnbounded = unbounded;
   du.func = ds.depth.func;
-  du.depthSig = t.depthSig;
+  // A program-written depth is no function of the primitive's positions alone: no signature (F11).
+  const bool lateDepth = ds.program->writesDepth(), readsZ = ds.program->readsFragDepth();
+  du.depthSig = lateDepth ? 0 : t.depthSig;
   du.depthEpoch = ds.depthEpoch;
 
   ShadeProvenance& sp = shadeProvenance();
@@ -602,9 +608,76 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
       if (!(cov | tie)) continue;
 
       float z[4];
+      double zTol[4];
       quad.x = qx, quad.y = qy, quad.coverage = cov;
-      for (int p = 0; p < 4; ++p) z[p] = interpolatePixel(t, ds.varyings, e[p], quad.var[p]);
+      for (int p = 0; p < 4; ++p) {
+        z[p] = quad.z[p] = interpolatePixel(t, ds.varyings, e[p], quad.var[p]);
+        zTol[p] = tolZ + std::fabs(double(z[p])) * tolerance::kInterpRel;
+      }
 
+      // The program's runs: lower bound, upper bound, value, then the lookup candidates. A program
+      // that reads gl_FragCoord.z sees z -/+ its precision in the bound runs (it is monotone in z,
+      // Program::readsFragDepth); one that writes depth starts from the interpolated z (F11).
+      QuadBatch batch{&quad, nullptr, 1, {}, t.primitiveId, t.layer, t.frontFacing};
+      std::memcpy(batch.flat, t.flat, sizeof batch.flat);
+      const SampleBound bounds[3] = {SampleBound::Lo, SampleBound::Hi, SampleBound::Value};
+      auto setRunDepth = [&](SampleBound bound) {
+        for (int p = 0; p < 4; ++p)
+          quad.z[p] = !readsZ || bound == SampleBound::Value ? z[p]
+                      : bound == SampleBound::Lo             ? float(double(z[p]) - zTol[p])
+                                                             : float(double(z[p]) + zTol[p]);
+      };
+      int lookupRuns = 0;
+      auto shade = [&] {
+        sp.active = true;
+        sp.resetPixels();
+        for (int r = 0; r < 3; ++r) {
+          sp.bound = bounds[r];
+          setRunDepth(bounds[r]);
+          outs[r].discard = 0;
+          std::memcpy(outs[r].depth, quad.z, sizeof quad.z);
+          batch.out = &outs[r];
+          ds.program->shadeQuads(batch, ds.ctx);
+        }
+        // Lookup candidates (docs/crosscheck.md): where a pixel's fragment made exactly one lookup with
+        // more than one candidate, the program runs again on each candidate's lower and upper bound
+        // (the sampler counted them in the first run). Two or more such lookups keep the hull runs.
+        lookupRuns = 0;
+        for (int p = 0; p < 4; ++p)
+          if (sp.forkingLookups[size_t(p)] == 1) lookupRuns = std::max(lookupRuns, int(sp.lookupCandidates[size_t(p)]));
+        for (int li = 0; li < lookupRuns; ++li)
+          for (int r = 0; r < 2; ++r) {
+            sp.bound = bounds[r];
+            sp.candidate = li;
+            setRunDepth(bounds[r]);
+            lookupOuts[r][li].discard = 0;
+            std::memcpy(lookupOuts[r][li].depth, quad.z, sizeof quad.z);
+            batch.out = &lookupOuts[r][li];
+            ds.program->shadeQuads(batch, ds.ctx);
+          }
+        sp.candidate = -1;
+        sp.active = false;
+        sp.bound = SampleBound::Value;
+        setRunDepth(SampleBound::Value);
+      };
+      if (lateDepth) {
+        // gl_FragDepth decides the test, so shade first. The written depth is the program's output:
+        // its legal values are those of its runs (every run's depth, clamped, F11), so the depth
+        // precision is the runs' spread around the value run's depth instead of the interpolation's.
+        shade();
+        for (int p = 0; p < 4; ++p) {
+          z[p] = clampFragDepth(outs[2].depth[p]);
+          double spread = 0.0;
+          for (int r = 0; r < 2; ++r) spread = std::max(spread, std::fabs(double(clampFragDepth(outs[r].depth[p])) - z[p]));
+          for (int li = 0; li < lookupRuns; ++li)
+            for (int r = 0; r < 2; ++r)
+              spread = std::max(spread, std::fabs(double(clampFragDepth(lookupOuts[r][li].depth[p])) - z[p]));
+          zTol[p] = spread;
+        }
+      }
+
+      // A discarded pixel reaches no depth test (GL 4.6 §15.2); only the late test can know that.
+      const uint8_t testable = lateDepth ? uint8_t((cov | tie) & ~(outs[0].discard & outs[1].discard & outs[2].discard)) : uint8_t(cov | tie);
       uint8_t pass = cov | tie, nearDepth = 0;
       float zStored[4] = {};
       if (depthTest) {
@@ -613,46 +686,31 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
           const float stored = loadDepth(*tv.depth, tv.level, t.layer, qx + (p & 1), qy + (p >> 1));
           zStored[p] = stored;
           if (!depthPasses(ds.depth.func, z[p], stored)) pass &= uint8_t(~(1u << p));
+          if (!(testable >> p & 1)) continue;
           // Ambiguous when some candidate's chain may decide the test otherwise (depthOutcome).
           PixelUpdate q = du;
-          q.z = z[p], q.zStored = stored, q.zTol = tolZ + std::fabs(double(z[p])) * tolerance::kInterpRel;
+          q.z = z[p], q.zStored = stored, q.zTol = zTol[p];
           if (depthMayDiffer(ds, tv, t.layer, qx + (p & 1), qy + (p >> 1), q, pass >> p & 1))
             nearDepth |= uint8_t(1u << p);
         }
       }
       const uint8_t valueWrite = cov & pass;
       uint8_t ambiguous = (tie & (pass | nearDepth)) | (cov & nearDepth);
-      stats.fragments_depth_failed += uint64_t(std::popcount(uint32_t(cov & ~pass)));
-      if (!(valueWrite | ambiguous)) continue;
-
-      QuadBatch batch{&quad, nullptr, 1, {}, t.primitiveId, t.layer, t.frontFacing};
-      std::memcpy(batch.flat, t.flat, sizeof batch.flat);
-      sp.active = true;
-      sp.resetPixels();
-      const SampleBound bounds[3] = {SampleBound::Lo, SampleBound::Hi, SampleBound::Value};
-      for (int r = 0; r < 3; ++r) {
-        sp.bound = bounds[r];
-        outs[r].discard = 0;
-        batch.out = &outs[r];
-        ds.program->shadeQuads(batch, ds.ctx);
-      }
-      // Lookup candidates (docs/crosscheck.md): where a pixel's fragment made exactly one lookup with
-      // more than one candidate, the program runs again on each candidate's lower and upper bound
-      // (the sampler counted them in the first run). Two or more such lookups keep the hull runs.
-      int lookupRuns = 0;
-      for (int p = 0; p < 4; ++p)
-        if (sp.forkingLookups[size_t(p)] == 1) lookupRuns = std::max(lookupRuns, int(sp.lookupCandidates[size_t(p)]));
-      for (int li = 0; li < lookupRuns; ++li)
-        for (int r = 0; r < 2; ++r) {
-          sp.bound = bounds[r];
-          sp.candidate = li;
-          lookupOuts[r][li].discard = 0;
-          batch.out = &lookupOuts[r][li];
-          ds.program->shadeQuads(batch, ds.ctx);
+      if (lateDepth) {
+        // Shaded whatever the test says: count as the fast path does (covered pixels, late test).
+        const uint8_t kept = uint8_t(cov & ~outs[2].discard);
+        stats.fragments_depth_failed += uint64_t(std::popcount(uint32_t(kept & ~pass)));
+        if (cov) {
+          stats.quads_shaded += 1;
+          stats.fragments_shaded += uint64_t(std::popcount(uint32_t(cov)));
+          stats.helper_invocations += uint64_t(4 - std::popcount(uint32_t(cov)));
+          stats.fragments_discarded += uint64_t(std::popcount(uint32_t(cov & outs[2].discard)));
         }
-      sp.candidate = -1;
-      sp.active = false;
-      sp.bound = SampleBound::Value;
+      } else {
+        stats.fragments_depth_failed += uint64_t(std::popcount(uint32_t(cov & ~pass)));
+      }
+      if (!(valueWrite | ambiguous)) continue;
+      if (!lateDepth) shade();
       // ALPHA_TEST (docs/crosscheck.md): the runs bound every legal sampled value and the programs are
       // monotone, so a pixel that some runs discard and others keep may go either way in GL.
       uint8_t discardAny = uint8_t(outs[0].discard | outs[1].discard | outs[2].discard);
@@ -665,10 +723,13 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
       const uint8_t discardTie = uint8_t(discardAny & ~discardAll);
       ambiguous = uint8_t(ambiguous | (discardTie & (valueWrite | ambiguous)));
 
-      stats.quads_shaded += 1;
-      stats.fragments_shaded += uint64_t(std::popcount(uint32_t(valueWrite)));
-      stats.helper_invocations += uint64_t(4 - std::popcount(uint32_t(valueWrite)));
-      stats.fragments_discarded += uint64_t(std::popcount(uint32_t(valueWrite & outs[2].discard)));
+
+      if (!lateDepth) {
+        stats.quads_shaded += 1;
+        stats.fragments_shaded += uint64_t(std::popcount(uint32_t(valueWrite)));
+        stats.helper_invocations += uint64_t(4 - std::popcount(uint32_t(valueWrite)));
+        stats.fragments_discarded += uint64_t(std::popcount(uint32_t(valueWrite & outs[2].discard)));
+      }
       for (int p = 0; p < 4; ++p) {
         const bool keep = (valueWrite >> p & 1) && !(outs[2].discard >> p & 1);
         const bool amb = ambiguous >> p & 1;
@@ -688,7 +749,7 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
         u.posTolPx = posTolPx;
         u.depthTest = du.depthTest, u.depthWrite = du.depthWrite, u.depthUnbounded = du.depthUnbounded;
         u.func = du.func, u.depthSig = du.depthSig, u.depthEpoch = du.depthEpoch;
-        u.z = z[p], u.zStored = zStored[p], u.zTol = tolZ + std::fabs(double(z[p])) * tolerance::kInterpRel;
+        u.z = z[p], u.zStored = zStored[p], u.zTol = zTol[p];
         u.lookupCount = sp.forkingLookups[size_t(p)] == 1 ? int(sp.lookupCandidates[size_t(p)]) : 0;
         u.lookupLo = lookupOuts[0];
         u.lookupHi = lookupOuts[1];
@@ -705,7 +766,7 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
           for (int i = 0; i < 3; ++i)
             if (nm >> i & 1) tieClass |= t.edgeKind[i] == kEdgeClipped ? kClipEdge : kEdgeTie;
         u.classes = uint16_t(sp.classes[size_t(p)] | (sp.dontCare[size_t(p)] ? kOobFetch : 0) | tieClass |
-                             ((nearDepth >> p & 1) ? kDepthNearEqual : 0) | (u.discardTie ? kAlphaTest : 0));
+                             ((nearDepth >> p & 1) || readsZ ? kDepthNearEqual : 0) | (u.discardTie ? kAlphaTest : 0));
         for (int a = 0; a < ds.colorOutputs; ++a) {
           TextureData* c = tv.color[size_t(a)];
           if (!c || !c->prov) continue;

@@ -67,6 +67,13 @@ void sampleQuad2DArray(const TexUnit& u, const float s[4], const float t[4], con
 void sampleGrad2DArray(const TexUnit& u, const float s[4], const float t[4], const float r[4], float dsdx,
                        float dtdx, float dsdy, float dtdy, float out[4][4]);
 
+// texelFetch(tex, ivec3(x, y, layer), 0) per quad pixel (texel_fetch.cpp): level 0, exact; a 2D
+// texture has one layer. Outside the level or the layers: (0, 0, 0, 0) (as buffer fetches: the twins
+// test against textureSize, spec-choices T11); no texture: (0, 0, 0, 1). Provenance mode reads a
+// rendered texture through its interval images in the bound runs (INPUT_INTERVAL).
+void fetchQuad2DArray(const TexUnit& u, const int64_t x[4], const int64_t y[4], const int64_t layer[4],
+                      float out[4][4]);
+
 // Array layer selection: clamp(floor(r + 0.5f), 0, layers - 1).
 uint32_t selectLayer(float r, uint32_t layers);
 

@@ -148,6 +148,11 @@ CommandList rewriteToObjectIds(const CommandList& list, std::string_view frameNa
     if (program && program->hasGeometryStage())
       throw Error(where + ": command " + std::to_string(i) + ": program '" + t.programName() +
                   "' has a geometry stage that moves vertices; the rewrite to object_id keeps the vertex stage only");
+    // atlas_sprite: its position is attribute 0 as is (no MVP in slots 0-3) and its fragment depth comes
+    // from a texture, so neither the rewrite's geometry nor "the nearest surface" would be the frame's.
+    if (program && program->writesDepth())
+      throw Error(where + ": command " + std::to_string(i) + ": program '" + t.programName() +
+                  "' writes its fragment depth; the rewrite to object_id models interpolated depth only");
     Rewritten r;
     r.count = d->count - d->count % 3;  // a trailing partial triangle draws nothing (GL 4.6 §10.1)
     if (const auto it = t.uniforms.find(t.program); it != t.uniforms.end()) {

@@ -12,12 +12,17 @@ const Program& textured();
 const Program& texarrayBatch();
 const Program& atlasDisplace();
 const Program& objectId();
+const Program& atlasCapture();
+const Program& atlasSprite();
+const Program& atlasCaptureTab();
 }  // namespace programs
 
-static const std::array<const Program*, 6>& table() {
-  static const std::array<const Program*, 6> t = {&programs::flatColor(),   &programs::vertexColor(),
-                                                  &programs::textured(),    &programs::texarrayBatch(),
-                                                  &programs::atlasDisplace(), &programs::objectId()};
+static const std::array<const Program*, 9>& table() {
+  static const std::array<const Program*, 9> t = {&programs::flatColor(),     &programs::vertexColor(),
+                                                  &programs::textured(),      &programs::texarrayBatch(),
+                                                  &programs::atlasDisplace(), &programs::objectId(),
+                                                  &programs::atlasCapture(),  &programs::atlasSprite(),
+                                                  &programs::atlasCaptureTab()};
   return t;
 }
 

@@ -23,15 +23,10 @@
 // undefined (GLSL 4.50 §8.9), so the twin computes dFdx/dFdy first and then switches over arrayID.
 // An arrayID outside [0, kMaxArrays) or an unbound array unit gives (0, 0, 0, 1) (incomplete); in
 // layout 1 that texel is multiplied and tested like any other.
-#include <cmath>
-#include <cstring>
-
-#include "raster/programs/common.h"
+#include "raster/programs/tab_lookup.h"
 
 namespace tessera::programs {
 namespace {
-constexpr int kMaxArrays = 8;
-
 class TexarrayBatch final : public Program {
  public:
   std::string_view name() const override { return "texarray_batch"; }
@@ -45,54 +40,8 @@ class TexarrayBatch final : public Program {
   void shadeQuads(const QuadBatch& b, const ShadeContext& ctx) const override {
     const bool materials = ctx.uniforms[4][0] == 1.0f;
     for (size_t q = 0; q < b.count; ++q) {
-      const Quad& quad = b.quads[q];
-      float s[4], t[4];
-      for (int p = 0; p < 4; ++p) s[p] = quad.var[p][0], t[p] = quad.var[p][1];
-      // Coarse derivatives (GL 4.6 §8.14.1 with the quad rule of docs/spec-choices.md).
-      const float dsdx = s[1] - s[0], dtdx = t[1] - t[0], dsdy = s[2] - s[0], dtdy = t[2] - t[0];
-      // The entry of each pixel; a quad normally lies in one triangle, so one entry for all four.
-      float tae[4][4];
-      float factor[4][4];
-      for (int p = 0; p < 4; ++p) {
-        const int64_t e = toIndex(quad.var[p][2]);
-        // toIndex gives -1 or |e| < 2^62 (its limit 4.6e18), so 2e + 1 cannot overflow.
-        if (materials) {
-          fetchBuffer(ctx.units[0], e < 0 ? -1 : 2 * e, tae[p]);
-          fetchBuffer(ctx.units[0], e < 0 ? -1 : 2 * e + 1, factor[p]);
-        } else {
-          fetchBuffer(ctx.units[0], e, tae[p]);
-        }
-      }
-      const bool uniform = std::memcmp(tae[0], tae[1], sizeof tae[0]) == 0 &&
-                           std::memcmp(tae[0], tae[2], sizeof tae[0]) == 0 &&
-                           std::memcmp(tae[0], tae[3], sizeof tae[0]) == 0;
-      float c[4][4] = {{0, 0, 0, 1}, {0, 0, 0, 1}, {0, 0, 0, 1}, {0, 0, 0, 1}};
-      if (uniform) {
-        const float arrayId = tae[0][0];
-        if (arrayId >= 0.0f && arrayId < float(kMaxArrays)) {
-          const float r[4] = {tae[0][1], tae[1][1], tae[2][1], tae[3][1]};
-          sampleGrad2DArray(ctx.units[1 + int(arrayId)], s, t, r, dsdx, dtdx, dsdy, dtdy, c);
-        }
-      } else {
-        // Pixels naming different arrays: one lookup per pixel, the same explicit derivatives.
-        for (int p = 0; p < 4; ++p) {
-          const float arrayId = tae[p][0];
-          if (!(arrayId >= 0.0f && arrayId < float(kMaxArrays))) continue;
-          const float sp[4] = {s[p], s[p], s[p], s[p]}, tp[4] = {t[p], t[p], t[p], t[p]};
-          const float rp[4] = {tae[p][1], tae[p][1], tae[p][1], tae[p][1]};
-          float one[4][4];
-          sampleGrad2DArray(ctx.units[1 + int(arrayId)], sp, tp, rp, dsdx, dtdx, dsdy, dtdy, one);
-          for (int k = 0; k < 4; ++k) c[p][k] = one[0][k];
-        }
-      }
-      if (materials) {
-        for (int p = 0; p < 4; ++p) {
-          // glTF material: factor, alpha test on the factored alpha, then OPAQUE / MASK force alpha 1.
-          for (int k = 0; k < 4; ++k) c[p][k] = c[p][k] * factor[p][k];
-          if (tae[p][2] > 0.0f && c[p][3] < tae[p][2]) b.out[q].discard |= uint8_t(1u << p);
-          if (tae[p][3] != 0.0f) c[p][3] = 1.0f;
-        }
-      }
+      float c[4][4];
+      tabShadeQuad(b.quads[q], 0, materials, ctx, b.out[q], c);
       for (int p = 0; p < 4; ++p) storeColor(b.out[q], 0, p, c[p]);
     }
   }

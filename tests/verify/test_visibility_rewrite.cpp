@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <string>
 
 #include "raster/cpu_backend.h"
+#include "base/error.h"
 #include "raster/image_io.h"
 #include "tools/scenes/scenes.h"
 #include "verify/visibility.h"
@@ -107,5 +109,16 @@ TEST(VisibilityRewrite, TheRewriteCoversExactlyThePixelsTheOriginalDrawsIncludin
       }
     EXPECT_GT(covered, 0u) << scene;
     EXPECT_EQ(disagree, 0u) << scene;
+  }
+}
+
+TEST(VisibilityRewrite, AFrameWithAProgramThatWritesItsDepthIsRefusedNamingTheProgram) {
+  // atlas_sprite's position is attribute 0 as is and its depth a texel: the object_id rewrite (MVP from
+  // slots 0-3, interpolated depth) would check other geometry than the frame's, so it refuses.
+  try {
+    rewriteToObjectIds(scenes::build("atlas_sprites", 64, 64));
+    FAIL() << "atlas_sprites must be refused";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("'atlas_sprite' writes its fragment depth"), std::string::npos) << e.what();
   }
 }

@@ -35,5 +35,8 @@ void buildLodLevels(CommandList& cl, int w, int h);
 void buildDepthTies(CommandList& cl, int w, int h);
 void buildFarVertices(CommandList& cl, int w, int h);
 void buildAlphaMask(CommandList& cl, int w, int h);
+void buildAtlasCapture(CommandList& cl, int w, int h);
+void buildAtlasCaptureTab(CommandList& cl, int w, int h);
+void buildAtlasSprites(CommandList& cl, int w, int h);
 
 }  // namespace tessera::scenes

@@ -29,6 +29,9 @@ const std::vector<Entry>& entries() {
       {{"lod_levels", "LOD without rho freedom: screen-aligned quads of constant isotropic lambda (0.25 .. 1.7) over a texture with one tint per level, trilinear and nearest-mip", 128, 64}, buildLodLevels},
       {{"depth_ties", "exact depth ties: sloped quads redrawn with the same vertices under LESS / LEQUAL / GREATER / GEQUAL, so only the non-strict functions pass", 160, 96}, buildDepthTies},
       {{"alpha_mask", "glTF materials: base-colour factors, alpha MASK (discard), OPAQUE and BLEND in textured and in texarray_batch's materials TAM, over an alpha gradient", 128, 96}, buildAlphaMask},
+      {{"atlas_capture", "render-to-texture-atlas capture with depth: atlas_capture into a layered RGBA8 + RG32F (gl_FragCoord.z, covered) + D32F target, every layer presented", 96, 64}, buildAtlasCapture},
+      {{"atlas_capture_tab", "atlas_capture's objects batched (TAB): atlas_capture_tab captures every object from one texture array in ONE draw call", 96, 64}, buildAtlasCaptureTab},
+      {{"atlas_sprites", "render-to-texture-atlas compositing: atlas_sprite depth sprites from a hand-made atlas, gl_FragDepth decides overlaps, empty texels discarded", 64, 64}, buildAtlasSprites},
   };
   return e;
 }
