@@ -5,16 +5,20 @@
 
 #include "base/error.h"
 #include "raster/limits.h"
+#include "rtta/parameterize.h"
 
 namespace tessera::rtta {
 
 void validateAtlas(int32_t tw, int32_t th, const Rect& vp, int32_t border) {
   if (tw <= 0 || th <= 0 || tw > kMaxTextureSize || th > kMaxTextureSize)
     throw Error(fmt::format("atlas {}x{}: expected 1..{} texels on each side", tw, th, kMaxTextureSize));
-  if (int64_t(tw) < int64_t(vp.w) + 2 * border || int64_t(th) < int64_t(vp.h) + 2 * border)
-    throw Error(fmt::format("atlas {}x{}: must hold the viewport {}x{} plus a border of {} on each side ({}x{}), "
-                            "so that a full-screen object fits one layer",
-                            tw, th, vp.w, vp.h, border, vp.w + 2 * border, vp.h + 2 * border));
+  const PixelRect full = borderedRegion({vp.x, vp.y, vp.x + vp.w, vp.y + vp.h}, border);
+  if (tw < full.width() || th < full.height())
+    throw Error(fmt::format("atlas {}x{}: must hold the viewport {}x{} plus a border of {} on each side, aligned to even "
+                            "pixels ({}x{}), so that a full-screen object fits one layer",
+                            tw, th, vp.w, vp.h, border, full.width(), full.height()));
+  if (tw % 2 || th % 2)
+    throw Error(fmt::format("atlas {}x{}: width and height must be even (regions sit at even positions)", tw, th));
 }
 
 AtlasSize atlasPackaging(std::span<Record> records, int32_t twMax, int32_t thMax) {

@@ -31,8 +31,9 @@ struct AtlasSize {
   int32_t layers = 0;             // Td (0 when nothing is visible)
 };
 
-// Throws Error unless Tw >= viewport width + 2 border and Th >= viewport height + 2 border (a region
-// of a full-screen object must fit one layer) and both are <= kMaxTextureSize.
+// Throws Error unless Tw x Th holds borderedRegion(viewport, border) (a region of a full-screen object
+// must fit one layer), both are even and <= kMaxTextureSize. Regions have even sizes and positions
+// (parameterize.h), so shelves and offsets stay even and every shift is even.
 void validateAtlas(int32_t tw, int32_t th, const Rect& vp, int32_t border);
 
 // Places every visible record's region (Record::viewport): sets Record::atlas and Record::layer;

@@ -114,6 +114,12 @@ NdcBound projectedBound(const std::array<Clip, 8>& clip, const Clip& err, bool& 
 
 }  // namespace
 
+PixelRect borderedRegion(const PixelRect& inner, int32_t border) {
+  auto floorEven = [](int32_t v) { return v - (v & 1); };  // two's complement: also right for negatives
+  auto ceilEven = [](int32_t v) { return v + (v & 1); };
+  return {floorEven(inner.x0 - border), floorEven(inner.y0 - border), ceilEven(inner.x1 + border), ceilEven(inner.y1 + border)};
+}
+
 std::vector<Record> parameterize(std::span<const Box3> objects, const glm::mat4& vpm, const Rect& vp,
                                  const ParamOptions& options) {
   if (options.border < 0 || options.border > 64)
@@ -164,8 +170,7 @@ std::vector<Record> parameterize(std::span<const Box3> objects, const glm::mat4&
       }
     }
     r.inner = inner;
-    const int32_t bo = options.border;
-    r.viewport = {inner.x0 - bo, inner.y0 - bo, inner.x1 + bo, inner.y1 + bo};
+    r.viewport = borderedRegion(inner, options.border);
   }
   return out;
 }

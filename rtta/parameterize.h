@@ -19,6 +19,11 @@
 //   object can cover lies inside B_viewport (RttaParameterization tests).
 // - The border (b pixels on every side) is added after clipping to the viewport, so it may lie outside
 //   the screen; those texels are never covered, and keep the atlas's reserved clear alpha.
+// - The bordered region is then widened to even pixel coordinates (at most one more pixel per side), so
+//   that with even atlas positions (packing.h) the shift s = B_atlas - B_viewport is even in x and y.
+//   Implicit derivatives come from 2x2 quads aligned to even window coordinates (GL 4.6 §15.2.1: "the
+//   derivatives ... are computed over 2x2 quads" in llvmpipe and the oracle alike); an odd shift would
+//   pair every pixel with a different neighbour and change the LOD, and so the texels, of the capture.
 // Does not implement: packing, transforms, the record buffer.
 #pragma once
 
@@ -55,6 +60,9 @@ Box3 boundsOf(const Vec3s& positions) {
   }
   return b;
 }
+
+// inner expanded by `border` on every side, then to even coordinates (floor / ceil to a multiple of 2).
+PixelRect borderedRegion(const PixelRect& inner, int32_t border);
 
 // Records for objects 0..n-1 with their B_world boxes, seen through the float matrix `vpm` (the one
 // the frame's programs use) in viewport `vp`. Fills id, world, culled, nearClipped, wholeViewport,

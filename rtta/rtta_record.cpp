@@ -17,8 +17,9 @@ const char* compositeName(Composite c) {
 }
 
 int32_t defaultAtlasSide(int32_t viewportSide, int32_t border) {
-  int32_t s = 1;
-  while (s < viewportSide + 2 * border) s *= 2;
+  const int32_t need = borderedRegion({0, 0, viewportSide, 1}, border).width();
+  int32_t s = 2;
+  while (s < need) s *= 2;
   return s;
 }
 
@@ -129,9 +130,11 @@ class Recorder {
   bool haveTint_ = false;
 };
 
+// bytes == nullptr: the on-screen 2D target; otherwise an off-screen array target (a layered target
+// needs array textures even with one layer) whose bytes are added up.
 ResourceId target(CommandList& cl, Format f, uint32_t w, uint32_t h, uint32_t layers, uint64_t* bytes) {
   TextureDesc d;
-  d.kind = layers > 1 ? TextureKind::Tex2DArray : TextureKind::Tex2D;
+  d.kind = bytes ? TextureKind::Tex2DArray : TextureKind::Tex2D;
   d.format = f;
   d.width = w;
   d.height = h;
@@ -272,8 +275,11 @@ RttaFrame recordRttaFrame(const RttaScene& scene, const RttaView& view, const Rt
   }
 
   // --- capture ---
+  // RTTA: four clip planes on the undisplaced position keep every object inside its own region (§3.1).
+  // RTT renders each object where it is on its own layer, with no neighbour to protect: no planes, so
+  // a layer is exactly the object rendered alone.
   RasterState clip;
-  clip.clipMask = 0x0f;
+  clip.clipMask = o.mode == Mode::Rtta ? 0x0f : 0x00;
   cl.setRasterState(clip);
   cl.setDepthState(depthOn);
   cl.useProgram(captureProg);

@@ -7,6 +7,7 @@
 #include "mta/camera.h"
 #include "raster/cpu_backend.h"
 #include "rtta/rtta_record.h"
+#include "rtta/shift_explain.h"
 #include "tests/rtta/box_scene.h"
 
 namespace tessera::rtta {
@@ -42,11 +43,15 @@ const uint8_t* pixel(const Rendered& r, ResourceId tex, uint32_t layer, int x, i
   return r.be->texture(tex)->texel(0, layer, uint32_t(x), uint32_t(y));
 }
 
-TEST(RttaCapture, EachRegionEqualsItsObjectRenderedAloneShifted) {
+// A region equals its object rendered alone, shifted by whole pixels, except where the float
+// displacement rounds a vertex to another sub-pixel or clipping cuts a triangle (shift_explain.h): every
+// differing texel must lie where such a triangle may reach.
+TEST(RttaCapture, EachRegionEqualsItsObjectRenderedAloneShiftedWhereNoVertexRounds) {
   const auto specs = testing::fiveBoxes();
   const RttaScene scene = testing::boxScene(specs, 4);
   const Rendered atlas = run(scene, {.mode = Mode::Rtta, .captureOnly = true});
-  int compared = 0, covered = 0;
+  const ShiftExplanation why = explainShift(scene, atlas.frame.records, view().mvp, {0, 0, int(kW), int(kH)}, atlas.frame.atlas);
+  int compared = 0, covered = 0, differing = 0, unexplained = 0, exactZone = 0;
   for (uint32_t k = 0; k < specs.size(); ++k) {
     const Record& r = atlas.frame.records[k];
     ASSERT_TRUE(r.visible()) << k;
@@ -56,24 +61,33 @@ TEST(RttaCapture, EachRegionEqualsItsObjectRenderedAloneShifted) {
         const int ax = x + r.atlas.x0 - r.viewport.x0, ay = y + r.atlas.y0 - r.viewport.y0;
         const uint8_t* a = pixel(atlas, atlas.frame.captureColor, uint32_t(r.layer), ax, ay);
         const bool onScreen = x >= 0 && y >= 0 && x < int(kW) && y < int(kH);
-        float depth = 1.0f;
-        if (onScreen) std::memcpy(&depth, pixel(alone, alone.frame.screenDepth, 0, x, y), 4);
-        ++compared;
-        if (depth < 1.0f) {
-          ++covered;
-          const uint8_t* s = pixel(alone, alone.frame.screen, 0, x, y);
-          ASSERT_EQ(std::memcmp(a, s, 4), 0) << "object " << k << " pixel " << x << "," << y;
-          float z[2];
-          std::memcpy(z, pixel(atlas, atlas.frame.captureDepth, uint32_t(r.layer), ax, ay), 8);
-          EXPECT_EQ(z[0], depth) << "the captured window depth is the depth test's value";
-          EXPECT_EQ(z[1], 1.0f);
-        } else {
-          EXPECT_EQ(a[3], 0) << "object " << k << ": texel " << ax << "," << ay << " not covered alone but written";
+        if (!onScreen) {
+          EXPECT_EQ(a[3], 0) << "a border texel off the screen was written";
+          continue;
         }
+        ++compared;
+        float depth = 1.0f;
+        std::memcpy(&depth, pixel(alone, alone.frame.screenDepth, 0, x, y), 4);
+        const uint8_t* s = pixel(alone, alone.frame.screen, 0, x, y);
+        float z[2];
+        std::memcpy(z, pixel(atlas, atlas.frame.captureDepth, uint32_t(r.layer), ax, ay), 8);
+        const bool same = depth < 1.0f ? std::memcmp(a, s, 4) == 0 && z[0] == depth && z[1] == 1.0f : a[3] == 0 && z[1] == 0.0f;
+        covered += depth < 1.0f;
+        const bool explained = why.mask[size_t(y) * kW + size_t(x)] != 0;
+        exactZone += !explained;
+        if (!same) ++differing, unexplained += !explained;
+        EXPECT_TRUE(same || explained) << "object " << k << " pixel " << x << "," << y << ": atlas " << int(a[0]) << ","
+                                       << int(a[1]) << "," << int(a[2]) << "," << int(a[3]) << " alone " << int(s[0]) << ","
+                                       << int(s[1]) << "," << int(s[2]) << "," << int(s[3]);
       }
   }
+  EXPECT_EQ(unexplained, 0);
   EXPECT_GT(covered, 2000);
-  EXPECT_GT(compared, covered);
+  EXPECT_GT(exactZone, 1000) << "too few pixels where the comparison is exact to mean anything";
+  std::printf("[ rtta ] capture vs alone: %d pixels compared, %d covered, %d differ (all explained), %d in the exact zone; "
+              "triangles %llu, rounded %llu, clipped %llu\n",
+              compared, covered, differing, exactZone, (unsigned long long)why.triangles, (unsigned long long)why.rounded,
+              (unsigned long long)why.clipped);
 }
 
 TEST(RttaCapture, NoFragmentLeavesItsRegionAndBordersKeepTheClearAlpha) {
@@ -111,9 +125,21 @@ TEST(RttaComposite, DepthSpritesReproduceThePlainRendering) {
   const Rendered std_ = run(scene, {.mode = Mode::Std});
   const Rendered rtta = run(scene, {.mode = Mode::Rtta});
   const Rendered rtt = run(scene, {.mode = Mode::Rtt});
-  // No two boxes touch, so no depth ties between objects: every pixel is the plain rendering's.
-  EXPECT_EQ(differingPixels(std_, std_.frame.screen, rtta, rtta.frame.screen), 0u);
+  // RTT layers are the objects rendered alone, and no two boxes touch (no depth ties between objects):
+  // its composite is the plain rendering, every pixel.
   EXPECT_EQ(differingPixels(std_, std_.frame.screen, rtt, rtt.frame.screen), 0u);
+  // RTTA's composite differs only where its capture may (shift_explain.h).
+  const ShiftExplanation why = explainShift(scene, rtta.frame.records, view().mvp, {0, 0, int(kW), int(kH)}, rtta.frame.atlas);
+  uint64_t differing = 0, unexplained = 0;
+  for (uint32_t y = 0; y < kH; ++y)
+    for (uint32_t x = 0; x < kW; ++x)
+      if (std::memcmp(pixel(std_, std_.frame.screen, 0, int(x), int(y)), pixel(rtta, rtta.frame.screen, 0, int(x), int(y)), 4)) {
+        ++differing;
+        unexplained += why.mask[size_t(y) * kW + x] == 0;
+      }
+  EXPECT_EQ(unexplained, 0u) << differing << " differing pixels";
+  std::printf("[ rtta ] depth composite vs STD: %llu of %u pixels differ, all where a displaced vertex rounds or clipping cuts\n",
+              (unsigned long long)differing, kW * kH);
 }
 
 TEST(RttaComposite, TransparentAndGhostedDifferFromThePlainRenderingOnlyWhereObjectsAre) {

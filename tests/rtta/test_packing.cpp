@@ -5,6 +5,7 @@
 
 #include "base/error.h"
 #include "rtta/packing.h"
+#include "rtta/parameterize.h"
 #include "rtta/record_buffer.h"
 #include "rtta/transform.h"
 
@@ -20,7 +21,7 @@ std::vector<Record> randomRegions(int n, int maxW, int maxH, uint64_t seed) {
     r[i].id = uint32_t(i);
     r[i].world = {{0, 0, 0}, {1, 1, 1}};
     r[i].inner = {x, y, x + w, y + h};
-    r[i].viewport = {x - 1, y - 1, x + w + 1, y + h + 1};
+    r[i].viewport = borderedRegion(r[i].inner, 1);
   }
   return r;
 }
@@ -42,6 +43,8 @@ TEST(RttaPacking, RegionsNeverOverlapStayInsideTheAtlasAndKeepTheirSize) {
     EXPECT_GE(r.atlas.y0, 0);
     EXPECT_LE(r.atlas.x1, ta.width);
     EXPECT_LE(r.atlas.y1, ta.height);
+    EXPECT_EQ((r.atlas.x0 - r.viewport.x0) % 2, 0) << "the shift must be even (2x2 quads)";
+    EXPECT_EQ((r.atlas.y0 - r.viewport.y0) % 2, 0);
   }
   // Regions include their border, so disjoint regions mean no border texel is shared either.
   for (size_t i = 0; i < recs.size(); ++i)
@@ -90,8 +93,11 @@ TEST(RttaPacking, MoreThan2048LayersIsAnErrorNamingTheLimit) {
 }
 
 TEST(RttaPacking, AnAtlasSmallerThanTheViewportPlusItsBorderIsRefused) {
-  EXPECT_NO_THROW(validateAtlas(1026, 1026, {0, 0, 1024, 1024}, 1));
-  EXPECT_THROW(validateAtlas(1024, 1024, {0, 0, 1024, 1024}, 1), Error);
+  // 1024 + 2 border = [-1, 1025), aligned to even pixels: [-2, 1026), 1028 wide.
+  EXPECT_NO_THROW(validateAtlas(1028, 1028, {0, 0, 1024, 1024}, 1));
+  EXPECT_THROW(validateAtlas(1026, 1028, {0, 0, 1024, 1024}, 1), Error);
+  EXPECT_NO_THROW(validateAtlas(1024, 1024, {0, 0, 1024, 1024}, 0));
+  EXPECT_THROW(validateAtlas(1025, 1026, {0, 0, 1020, 1020}, 0), Error) << "odd sizes are refused";
   EXPECT_THROW(validateAtlas(0, 1024, {0, 0, 16, 16}, 0), Error);
   EXPECT_THROW(validateAtlas(32768, 1024, {0, 0, 16, 16}, 0), Error);
 }

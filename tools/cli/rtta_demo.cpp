@@ -58,7 +58,7 @@ RttaDemoResult runRttaDemo(const std::string& outDir, const std::string& railway
         m["rtt"]["render_target_changes_mean"].get<double>(), m["rtta"]["render_target_changes_mean"].get<double>(),
         m["std"]["frame_time_ms_mean"].get<double>(), m["rtt"]["frame_time_ms_mean"].get<double>(),
         m["rtta"]["frame_time_ms_mean"].get<double>(), t["atlas"]["width"].get<int>(), t["atlas"]["height"].get<int>(),
-        t["atlas"]["layers_needed_max"].get<uint64_t>(), t["composite_vs_std_identical_percent_min"].get<double>(),
+        t["atlas"]["layers_needed_max"].get<uint64_t>(), t["composite_vs_std"]["rtta"]["identical_percent_min"].get<double>(),
         t.value("capture_vs_rtt_identical_percent", 0.0));
   };
   out.html = fmt::format(
@@ -67,7 +67,9 @@ RttaDemoResult runRttaDemo(const std::string& outDir, const std::string& railway
       "displacement), then composited; STD draws the scene once, RTT one off-screen pass per object.</p>"
       "<table border=1 cellspacing=0><tr><th>scene</th><th>#Vertex</th><th>#Face</th><th>#Obj</th>"
       "<th>draw calls STD / RTT / RTTA</th><th>render-target changes</th><th>oracle ms</th><th>atlas Tw×Th×Td</th>"
-      "<th>composite = STD, min %</th><th>capture = RTT %</th></tr>{}{}</table>"
+      "<th>RTTA composite = STD, min %</th><th>capture = RTT %</th></tr>{}{}</table>"
+      "<p>Every differing pixel lies where a captured triangle was cut by the capture's clip planes or a displaced vertex "
+      "rounded to another sub-pixel, or where two objects tie in depth (docs/rtta.md); RTT composites equal STD.</p>"
       "<p>five objects, frame 12: STD / RTTA composite / atlas layer 0 (red: B_atlas, yellow: interior), ghosted, transparent:"
       "<br>{}{}{}{}{}</p><p>railway.glb, frame 6: STD / RTTA / atlas layer 0: {}{}{}</p>"
       "<p><a href='rtta/five/index.html'>five: every frame</a> · <a href='rtta/railway/index.html'>railway: every frame</a></p>",

@@ -18,6 +18,7 @@
 #include "raster/serialize.h"
 #include "rtta/layer_policy.h"
 #include "rtta/rtta_record.h"
+#include "rtta/shift_explain.h"
 #include "tools/cli/frame_job.h"
 #include "tools/cli/mta_path_run.h"
 #include "tools/cli/options.h"
@@ -234,15 +235,18 @@ nlohmann::json runRttaRender(const RttaRenderArgs& a) {
   Progress progress("rtta render", path.frames.size(), a.quiet);
   std::map<Mode, std::vector<double>> ms;
   uint64_t culledTotal = 0, layersNeededMax = 0, layersAllocatedMax = 0;
-  uint64_t captureCompared = 0, captureIdentical = 0;
-  double identicalMin = 100.0, identicalSum = 0.0;
-  uint64_t identicalFrames = 0;
+  uint64_t captureCompared = 0, captureIdentical = 0, captureUnexplained = 0;
+  struct VsStd {
+    double min = 100.0, sum = 0.0;
+    uint64_t frames = 0, differing = 0, explained = 0, ties = 0, unexplained = 0;
+  };
+  std::map<Mode, VsStd> vsStd;  // depth composites of RTT and RTTA against STD
   nlohmann::json lastAtlas;
   for (size_t i = 0; i < path.frames.size(); ++i) {
     mta::validate(path.frames[i], "rtta render: camera path frame " + std::to_string(i));
     const rtta::RttaView view = viewOf(path.frames[i], s.w, s.h);
     const bool save = saveFrame(saveRule, i, path.frames.size());
-    std::vector<uint8_t> stdImage, rttCapture;
+    std::vector<uint8_t> stdImage, stdDepth, rttCapture;
     std::vector<uint32_t> rttLayerOf;  // object id -> RTT layer
     std::string detail;
     for (Mode m : s.modes) {
@@ -256,6 +260,9 @@ nlohmann::json runRttaRender(const RttaRenderArgs& a) {
           f = rtta::recordRttaFrame(scene, view, o);
         }
       }
+      // Where the capture may differ from the objects rendered alone (shift_explain.h).
+      rtta::ShiftExplanation why;
+      if (m == Mode::Rtta) why = rtta::explainShift(scene, f.records, view.mvp, {0, 0, s.w, s.h}, f.atlas);
       const FrameCounters c = countCommands(f.list);
       const auto t0 = std::chrono::steady_clock::now();
       backend.execute(f.list, std::string("rtta ") + rtta::modeName(m) + " frame " + std::to_string(i));
@@ -279,15 +286,42 @@ nlohmann::json runRttaRender(const RttaRenderArgs& a) {
                           {"objects_culled", culled},
                           {"frame_time_ms", t},
                           {"image_sha256", imageSha256(screen, 0, 0)}};
-      if (m == Mode::Std) stdImage = pixels;
+      if (m == Mode::Std) stdImage = pixels, stdDepth = backend.texture(f.screenDepth)->levels[0];
       else if (!stdImage.empty() && o.composite == Composite::Depth) {
-        size_t same = 0;
-        for (size_t p = 0; p + 3 < pixels.size(); p += 4) same += std::memcmp(&pixels[p], &stdImage[p], 4) == 0;
+        size_t same = 0, explained = 0, ties = 0;
+        for (size_t p = 0; p + 3 < pixels.size(); p += 4) {
+          if (std::memcmp(&pixels[p], &stdImage[p], 4) == 0) {
+            ++same;
+            continue;
+          }
+          // pixels are top row first; the mask is GL rows, bottom first.
+          const size_t px = (p / 4) % size_t(s.w), py = size_t(s.h) - 1 - (p / 4) / size_t(s.w);
+          if (!why.mask.empty() && why.mask[py * size_t(s.w) + px] != 0) {
+            ++explained;
+            continue;
+          }
+          // A depth tie: the composite kept another object at exactly STD's depth.
+          float zs, zc;
+          std::memcpy(&zs, &stdDepth[(py * size_t(s.w) + px) * 4], 4);
+          std::memcpy(&zc, backend.texture(f.screenDepth)->texel(0, 0, uint32_t(px), uint32_t(py)), 4);
+          ties += zs == zc;
+        }
         const double pct = 100.0 * double(same) / double(pixels.size() / 4);
         r["identical_percent_vs_std"] = pct;
-        identicalMin = std::min(identicalMin, pct);
-        identicalSum += pct;
-        ++identicalFrames;
+        const size_t unexplained = pixels.size() / 4 - same - explained - ties;
+        r["differing_vs_std"] = {{"pixels", pixels.size() / 4 - same},
+                                 {"where_the_capture_rounds_or_clips", explained},
+                                 {"depth_ties_between_objects", ties},
+                                 {"unexplained", unexplained}};
+
+        VsStd& acc = vsStd[m];
+        acc.min = std::min(acc.min, pct);
+        acc.sum += pct;
+        ++acc.frames;
+        acc.differing += pixels.size() / 4 - same;
+        acc.explained += explained;
+        acc.ties += ties;
+        acc.unexplained += unexplained;
       }
       if (m == Mode::Rtt) {
         rttCapture = backend.texture(f.captureColor)->levels[0];
@@ -317,7 +351,9 @@ nlohmann::json runRttaRender(const RttaRenderArgs& a) {
               if (!rttCapture.empty() && x >= 0 && y >= 0 && x < s.w && y < s.h) {
                 const size_t off = ((size_t(rttLayerOf[rec.id]) * size_t(s.h) + size_t(y)) * size_t(s.w) + size_t(x)) * 4;
                 ++captureCompared;
-                captureIdentical += std::memcmp(texel, &rttCapture[off], 4) == 0;
+                const bool same = std::memcmp(texel, &rttCapture[off], 4) == 0;
+                captureIdentical += same;
+                captureUnexplained += !same && why.mask[size_t(y) * size_t(s.w) + size_t(x)] == 0;
               }
             }
         }
@@ -389,12 +425,19 @@ nlohmann::json runRttaRender(const RttaRenderArgs& a) {
                       {"reallocations", allocator.reallocations()},
                       {"objects_culled_total", culledTotal},
                       {"last_frame", lastAtlas}};
-    if (captureCompared) table["capture_vs_rtt_identical_percent"] = 100.0 * double(captureIdentical) / double(captureCompared);
+    if (captureCompared) {
+      table["capture_vs_rtt_identical_percent"] = 100.0 * double(captureIdentical) / double(captureCompared);
+      table["capture_vs_rtt_differing_pixels"] = captureCompared - captureIdentical;
+      table["capture_vs_rtt_differing_unexplained"] = captureUnexplained;
+    }
   }
-  if (identicalFrames) {
-    table["composite_vs_std_identical_percent_mean"] = identicalSum / double(identicalFrames);
-    table["composite_vs_std_identical_percent_min"] = identicalMin;
-  }
+  for (const auto& [m, acc] : vsStd)
+    table["composite_vs_std"][rtta::modeName(m)] = {{"identical_percent_mean", acc.sum / double(acc.frames)},
+                                                    {"identical_percent_min", acc.min},
+                                                    {"differing_pixels", acc.differing},
+                                                    {"where_the_capture_rounds_or_clips", acc.explained},
+                                                    {"depth_ties_between_objects", acc.ties},
+                                                    {"unexplained", acc.unexplained}};
   std::vector<verify::RgbaCanvas> panels;
   panels.push_back(verify::drawLineChart({"Oracle frame time", "frame", "ms", timeSeries}));
   panels.push_back(verify::drawLineChart({"Draw calls per frame", "frame", "draw calls", drawSeries}));
