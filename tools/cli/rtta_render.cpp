@@ -379,6 +379,13 @@ nlohmann::json runRttaRender(const RttaRenderArgs& a) {
         writeFrame(f.list, (fs::path(a.out) / tframe).string());
         r["image"] = stem;
         r["tframe"] = tframe;
+        if (m == Mode::Rtta) {  // the capture alone, so its atlas layers are presented images (crosscheck)
+          rtta::RttaOptions co = o;
+          co.captureOnly = true;
+          const std::string atlasFrame = fs::path(frameName("atlas", i)).replace_extension(".tframe").string();
+          writeFrame(rtta::recordRttaFrame(scene, view, co).list, (fs::path(a.out) / atlasFrame).string());
+          r["atlas_tframe"] = atlasFrame;
+        }
       }
       detail += std::string(rtta::modeName(m)) + " " + std::to_string(c.draw_calls) + " draws ";
       rows.push_back(std::move(r));

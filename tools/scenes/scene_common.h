@@ -38,5 +38,9 @@ void buildAlphaMask(CommandList& cl, int w, int h);
 void buildAtlasCapture(CommandList& cl, int w, int h);
 void buildAtlasCaptureTab(CommandList& cl, int w, int h);
 void buildAtlasSprites(CommandList& cl, int w, int h);
+void buildRttaFive(CommandList& cl, int w, int h);
+void buildRttaFiveAtlas(CommandList& cl, int w, int h);
+void buildRttaFiveTransparent(CommandList& cl, int w, int h);
+void buildRttaFiveGhosted(CommandList& cl, int w, int h);
 
 }  // namespace tessera::scenes

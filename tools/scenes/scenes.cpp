@@ -32,6 +32,10 @@ const std::vector<Entry>& entries() {
       {{"atlas_capture", "render-to-texture-atlas capture with depth: atlas_capture into a layered RGBA8 + RG32F (gl_FragCoord.z, covered) + D32F target, every layer presented", 96, 64}, buildAtlasCapture},
       {{"atlas_capture_tab", "atlas_capture's objects batched (TAB): atlas_capture_tab captures every object from one texture array in ONE draw call", 96, 64}, buildAtlasCaptureTab},
       {{"atlas_sprites", "render-to-texture-atlas compositing: atlas_sprite depth sprites from a hand-made atlas, gl_FragDepth decides overlaps, empty texels discarded", 64, 64}, buildAtlasSprites},
+      {{"rtta_five_atlas", "render-to-texture-atlas on the five-object brake assembly: Algorithm 1 and one capture pass; the atlas colour and window-depth layers", 160, 160}, buildRttaFiveAtlas},
+      {{"rtta_five", "render-to-texture-atlas: the five objects captured, then composited with depth sprites (gl_FragDepth from the atlas): the plain rendering again", 160, 160}, buildRttaFive},
+      {{"rtta_five_transparent", "render-to-texture-atlas: the five objects composited translucent, back to front, no depth test (Fig. 3B)", 160, 160}, buildRttaFiveTransparent},
+      {{"rtta_five_ghosted", "render-to-texture-atlas: ghosted view, the pad opaque and highlighted, the rest translucent (Fig. 3C)", 160, 160}, buildRttaFiveGhosted},
   };
   return e;
 }

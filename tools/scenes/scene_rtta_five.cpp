@@ -1,0 +1,68 @@
+// rtta_five, rtta_five_atlas, rtta_five_transparent, rtta_five_ghosted: render-to-texture-atlas through
+// the rtta library itself (Trapp & Döllner 2010) on the built-in five-object brake assembly
+// (model/five_objects.h, the paper's Fig. 1), seen from its default camera: Algorithm 1 (culling,
+// projection, packing, transforms), the record buffer, one capture pass by screen-space vertex
+// displacement (atlas_capture: colour, window depth, depth), and the composites of Fig. 3 with
+// atlas_sprite: depth sprites (A), transparent back to front (B), ghosted with the pad highlighted (C).
+// rtta_five_atlas ends on the capture target, so its atlas colour and depth layers are the presented
+// images. The atlas is twice the default side, so every object lands in layer 0: softpipe misroutes
+// fragments of layers >= 1 whose depth test fails into layer 0 (docs/softpipe-edge-flips.md §1), and
+// these scenes are cross-checked on softpipe too.
+#include "batching/input_batches.h"
+#include "model/five_objects.h"
+#include "model/object_groups.h"
+#include "mta/camera.h"
+#include "rtta/rtta_record.h"
+#include "tools/scenes/scene_common.h"
+
+namespace tessera::scenes {
+
+namespace {
+
+const rtta::RttaScene& fiveScene() {
+  static const rtta::RttaScene s = [] {
+    const model::Model m = model::fiveObjectModel();
+    const auto groups = model::groupObjects(m, model::ObjectGrouping::Node);
+    std::vector<uint32_t> objectOf(m.meshes.size());
+    std::vector<std::string> names;
+    for (uint32_t g = 0; g < groups.size(); ++g) {
+      names.push_back(groups[g].name);
+      for (uint32_t mesh : groups[g].meshes) objectOf[mesh] = g;
+    }
+    return rtta::makeRttaScene(batching::prepareInput(m), objectOf, names);
+  }();
+  return s;
+}
+
+void buildFive(CommandList& cl, int w, int h, rtta::Composite composite, bool captureOnly) {
+  mta::Camera c;
+  c.eye = model::kFiveObjectEye;
+  c.target = model::kFiveObjectTarget;
+  c.up = model::kFiveObjectUp;
+  c.tanHalfFovX = model::kFiveObjectTanHalfFovY * double(w) / double(h);  // the model's vertical field
+  c.nearPlane = model::kFiveObjectNear;
+  c.farPlane = model::kFiveObjectFar;
+  rtta::RttaView v;
+  v.mvp = mta::viewProjection(c, uint32_t(w), uint32_t(h));
+  v.eye = c.eye;
+  v.width = uint32_t(w), v.height = uint32_t(h);
+  rtta::RttaOptions o;
+  o.mode = rtta::Mode::Rtta;
+  o.composite = composite;
+  o.params.border = 2;
+  o.atlasWidth = 2 * rtta::defaultAtlasSide(w, o.params.border);
+  o.atlasHeight = 2 * rtta::defaultAtlasSide(h, o.params.border);
+  o.important = {1};  // the pad, as the paper's Fig. 3C highlights the brake pad
+  o.captureOnly = captureOnly;
+  rtta::RttaFrame f = rtta::recordRttaFrame(fiveScene(), v, o);
+  cl = std::move(f.list);
+}
+
+}  // namespace
+
+void buildRttaFive(CommandList& cl, int w, int h) { buildFive(cl, w, h, rtta::Composite::Depth, false); }
+void buildRttaFiveAtlas(CommandList& cl, int w, int h) { buildFive(cl, w, h, rtta::Composite::Depth, true); }
+void buildRttaFiveTransparent(CommandList& cl, int w, int h) { buildFive(cl, w, h, rtta::Composite::Transparent, false); }
+void buildRttaFiveGhosted(CommandList& cl, int w, int h) { buildFive(cl, w, h, rtta::Composite::Ghosted, false); }
+
+}  // namespace tessera::scenes
