@@ -5,6 +5,7 @@
 #include <map>
 #include <vector>
 
+#include "batching/tab_resources.h"
 #include "raster/texture.h"
 
 namespace tessera::batching {
@@ -12,15 +13,6 @@ namespace tessera::batching {
 const char* variantName(Variant v) { return v == Variant::Batched ? "batched" : "baseline"; }
 
 namespace {
-
-Wrap toWrap(WrapMode w) {
-  switch (w) {
-    case WrapMode::Repeat: return Wrap::Repeat;
-    case WrapMode::ClampToEdge: return Wrap::ClampToEdge;
-    case WrapMode::MirroredRepeat: return Wrap::MirroredRepeat;
-  }
-  return Wrap::Repeat;
-}
 
 template <class T>
 std::span<const uint8_t> asBytes(const std::vector<T>& v) {
@@ -34,59 +26,16 @@ class Recorder {
 
   ResourceId sampler(WrapMode ws, WrapMode wt) {
     auto [it, fresh] = samplers_.emplace(uint32_t(ws) * 16 + uint32_t(wt), kNone);
-    if (fresh) {
-      SamplerState st;
-      st.wrapS = toWrap(ws);
-      st.wrapT = toWrap(wt);
-      st.minFilter = Filter::LinearMipmapLinear;
-      st.magFilter = Filter::Linear;
-      it->second = cl_.createSampler(st);
-    }
+    if (fresh) it->second = cl_.createSampler(tabSampler(ws, wt));
     return it->second;
   }
   ResourceId texture2D(uint32_t t) {
     auto [it, fresh] = textures_.emplace(t, kNone);
-    if (fresh) {
-      const TabTexture& tex = s_.textures[t];
-      TextureDesc d;
-      d.width = tex.width;
-      d.height = tex.height;
-      d.levels = uint32_t(tex.levels.size());
-      it->second = cl_.createTexture(d);
-      for (uint32_t l = 0; l < tex.levels.size(); ++l) cl_.uploadTexture(it->second, l, 0, tex.levels[l]);
-    }
+    if (fresh) it->second = recordTexture2D(cl_, s_, t);
     return it->second;
   }
-  ResourceId textureArray(uint32_t a) {
-    const TextureArray& ta = s_.arrays[a];
-    TextureDesc d;
-    d.kind = TextureKind::Tex2DArray;
-    d.width = ta.key.width;
-    d.height = ta.key.height;
-    d.layers = uint32_t(ta.layers.size());
-    d.levels = fullMipCount(d.width, d.height);
-    const ResourceId id = cl_.createTexture(d);
-    for (uint32_t layer = 0; layer < ta.layers.size(); ++layer) {
-      const TabTexture& tex = s_.textures[ta.layers[layer]];
-      for (uint32_t l = 0; l < d.levels; ++l) cl_.uploadTexture(id, l, layer, tex.levels[l]);
-    }
-    return id;
-  }
-  ResourceId tam(const OutputBatch& b) {
-    std::vector<float> texels;
-    texels.reserve(b.tam.size() * 8);
-    for (const TamEntry& e : b.tam) {
-      texels.insert(texels.end(), {float(e.array), float(e.layer), e.alphaCutoff, e.opaque ? 1.0f : 0.0f});
-      texels.insert(texels.end(), e.factor.begin(), e.factor.end());
-    }
-    const ResourceId buf = cl_.createBuffer(BufferKind::Texel, asBytes(texels));
-    TextureDesc d;
-    d.kind = TextureKind::Buffer;
-    d.format = Format::RGBA32F;
-    d.width = uint32_t(b.tam.size() * 2);
-    d.buffer = buf;
-    return cl_.createTexture(d);
-  }
+  ResourceId textureArray(uint32_t a) { return recordTextureArray(cl_, s_, a); }
+  ResourceId tam(const OutputBatch& b) { return recordTam(cl_, b); }
 
  private:
   const TabScene& s_;

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "base/error.h"
+#include "batching/tab_resources.h"
 #include "raster/limits.h"
 #include "rtta/record_buffer.h"
 #include "rtta/transform.h"
@@ -12,6 +13,7 @@
 namespace tessera::rtta {
 
 const char* modeName(Mode m) { return m == Mode::Std ? "std" : m == Mode::Rtt ? "rtt" : "rtta"; }
+const char* texturingName(Texturing t) { return t == Texturing::Bind ? "bind" : "tab"; }
 const char* compositeName(Composite c) {
   return c == Composite::Depth ? "depth" : c == Composite::Transparent ? "transparent" : "ghosted";
 }
@@ -30,15 +32,6 @@ std::span<const uint8_t> asBytes(const std::vector<T>& v) {
   return {reinterpret_cast<const uint8_t*>(v.data()), v.size() * sizeof(T)};
 }
 
-Wrap toWrap(batching::WrapMode w) {
-  switch (w) {
-    case batching::WrapMode::Repeat: return Wrap::Repeat;
-    case batching::WrapMode::ClampToEdge: return Wrap::ClampToEdge;
-    case batching::WrapMode::MirroredRepeat: return Wrap::MirroredRepeat;
-  }
-  return Wrap::Repeat;
-}
-
 // A run of consecutive meshes drawn by one draw: same texture (-1 = the white texel) and factor.
 struct DrawRun {
   int64_t texture = -1;
@@ -48,10 +41,11 @@ struct DrawRun {
 
 int64_t textureOf(const batching::TabMesh& m) { return m.textures.empty() ? -1 : int64_t(m.textures[0]); }
 
-std::vector<DrawRun> drawRuns(const batching::TabScene& s) {
+// Runs over every mesh, or (unbatchedOnly) over the meshes TAB's output batches do not hold.
+std::vector<DrawRun> drawRuns(const batching::TabScene& s, bool unbatchedOnly = false) {
   std::vector<DrawRun> runs;
   for (const batching::TabMesh& m : s.meshes) {
-    if (m.vertexCount == 0) continue;
+    if (m.vertexCount == 0 || (unbatchedOnly && m.kind == batching::MeshKind::Batched)) continue;
     const int64_t t = textureOf(m);
     if (!runs.empty() && runs.back().texture == t && runs.back().factor == m.factor &&
         runs.back().first + runs.back().count == m.firstVertex) {
@@ -73,19 +67,14 @@ class Recorder {
     bound_ = t;
     auto [it, fresh] = textures_.emplace(t, kNone);
     if (fresh) {
-      TextureDesc d;
       if (t < 0) {
+        TextureDesc d;
         d.width = d.height = 1;
         it->second = cl_.createTexture(d);
         const std::vector<uint8_t> white{255, 255, 255, 255};
         cl_.uploadTexture(it->second, 0, 0, white);
       } else {
-        const batching::TabTexture& tex = s_.tab.textures[size_t(t)];
-        d.width = tex.width;
-        d.height = tex.height;
-        d.levels = uint32_t(tex.levels.size());
-        it->second = cl_.createTexture(d);
-        for (uint32_t l = 0; l < tex.levels.size(); ++l) cl_.uploadTexture(it->second, l, 0, tex.levels[l]);
+        it->second = batching::recordTexture2D(cl_, s_.tab, uint32_t(t));
       }
     }
     cl_.bindTexture(unit, it->second);
@@ -94,14 +83,9 @@ class Recorder {
     if (key != boundSampler_) {
       boundSampler_ = key;
       auto [sit, sfresh] = samplers_.emplace(key, kNone);
-      if (sfresh) {
-        SamplerState st;
-        st.wrapS = tex ? toWrap(tex->wrapS) : Wrap::Repeat;
-        st.wrapT = tex ? toWrap(tex->wrapT) : Wrap::Repeat;
-        st.minFilter = Filter::LinearMipmapLinear;
-        st.magFilter = Filter::Linear;
-        sit->second = cl_.createSampler(st);
-      }
+      if (sfresh)
+        sit->second = cl_.createSampler(tex ? batching::tabSampler(tex->wrapS, tex->wrapT)
+                                            : batching::tabSampler(batching::WrapMode::Repeat, batching::WrapMode::Repeat));
       cl_.bindSampler(unit, sit->second);
     }
   }
@@ -118,6 +102,12 @@ class Recorder {
     cl_.setUniforms(7, f);
   }
   void resetUniformCache() { haveTint_ = false; }
+  // After another program bound its own textures, samplers and uniforms.
+  void resetBindings() {
+    bound_ = -2;
+    boundSampler_ = ~0u;
+    haveTint_ = false;
+  }
 
  private:
   const RttaScene& s_;
@@ -159,11 +149,12 @@ std::vector<float> matrixSlots(const glm::mat4& m) {
   return u;
 }
 
-VertexLayout sceneLayout() {
+// texcoordComponents: 2 (s, t) for the bind programs, 3 (s, t, i_TAM) for atlas_capture_tab.
+VertexLayout sceneLayout(uint8_t texcoordComponents = 2) {
   VertexLayout l;
   l.stride = sizeof(RttaVertex);
   l.attribs[0] = {0, 3, AttribType::F32, 0};
-  l.attribs[1] = {1, 2, AttribType::F32, 12};
+  l.attribs[1] = {1, texcoordComponents, AttribType::F32, 12};
   l.attribs[2] = {2, 1, AttribType::U32, 24};
   return l;
 }
@@ -201,7 +192,8 @@ RttaFrame recordRttaFrame(const RttaScene& scene, const RttaView& view, const Rt
   f.screen = target(cl, Format::RGBA8, view.width, view.height, 1, nullptr);
   const ResourceId screenDepth = f.screenDepth = target(cl, Format::D32F, view.width, view.height, 1, nullptr);
   const ResourceId vb = cl.createBuffer(BufferKind::Vertex, asBytes(scene.vertices));
-  rec.createAll(1, runs);
+  const bool tab = o.mode == Mode::Rtta && o.texturing == Texturing::Tab;
+  rec.createAll(1, tab ? drawRuns(scene.tab, true) : runs);
   const ResourceId texturedProg = o.mode == Mode::Std ? cl.createProgram("textured") : kNone;
   const ResourceId captureProg = o.mode == Mode::Std ? kNone : cl.createProgram("atlas_capture");
   const ResourceId spriteProg = o.mode == Mode::Std || o.captureOnly ? kNone : cl.createProgram("atlas_sprite");
@@ -235,6 +227,33 @@ RttaFrame recordRttaFrame(const RttaScene& scene, const RttaView& view, const Rt
     recBuf = recordBufferTexture(cl, encodeRecordBuffer(identity));
   }
   f.allocatedLayers = layers;
+  // --texturing tab: every output batch's arrays (with their samplers) and TAM, before the first draw.
+  struct BatchRes {
+    std::vector<ResourceId> arrays, samplers;
+    ResourceId tam = kNone;
+  };
+  std::vector<BatchRes> batchRes;
+  ResourceId tabProg = kNone;
+  if (tab) {
+    bool anyBatched = false;
+    for (const batching::TabMesh& m : scene.tab.meshes) anyBatched = anyBatched || m.kind == batching::MeshKind::Batched;
+    if (anyBatched && scene.tab.batches.empty())
+      throw Error("--texturing tab: the scene has no output batches (run TAB's Algorithm 1 first)");
+    tabProg = cl.createProgram("atlas_capture_tab");
+    std::map<uint32_t, ResourceId> samplers;
+    for (const batching::OutputBatch& b : scene.tab.batches) {
+      BatchRes r;
+      for (uint32_t a : b.arrays) {
+        r.arrays.push_back(batching::recordTextureArray(cl, scene.tab, a));
+        const batching::ArrayKey& k = scene.tab.arrays[a].key;
+        auto [it, fresh] = samplers.emplace(uint32_t(k.wrapS) * 16 + uint32_t(k.wrapT), kNone);
+        if (fresh) it->second = cl.createSampler(batching::tabSampler(k.wrapS, k.wrapT));
+        r.samplers.push_back(it->second);
+      }
+      r.tam = batching::recordTam(cl, b, true);
+      batchRes.push_back(std::move(r));
+    }
+  }
   if (o.mode != Mode::Std) {
     const uint32_t w = o.mode == Mode::Rtta ? uint32_t(f.atlas.width) : view.width;
     const uint32_t h = o.mode == Mode::Rtta ? uint32_t(f.atlas.height) : view.height;
@@ -299,10 +318,44 @@ RttaFrame recordRttaFrame(const RttaScene& scene, const RttaView& view, const Rt
     cl.setRenderTarget(rt);
     cl.setViewport({0, 0, f.atlas.width, f.atlas.height});
     clearCapture();
-    for (const DrawRun& r : runs) {
-      rec.bind(1, r.texture);
-      rec.tint(r.factor);
-      cl.draw(r.first, r.count);
+    if (tab) {
+      // Algorithm 2 of TAB inside the capture: the record buffer on unit 9, so units 0-8 are a TAB draw's.
+      cl.useProgram(tabProg);
+      cl.setVertexLayout(sceneLayout(3));
+      cl.setUniforms(0, mvp);
+      const std::vector<float> materials{1, 0, 0, 0}, white{1, 1, 1, 1};
+      cl.setUniforms(4, materials);
+      cl.setUniforms(7, white);
+      cl.bindTexture(9, recBuf);
+      for (size_t b = 0; b < scene.tab.batches.size(); ++b) {
+        const BatchRes& r = batchRes[b];
+        cl.bindTexture(0, r.tam);
+        for (size_t k = 0; k < r.arrays.size(); ++k) {
+          cl.bindSampler(uint32_t(1 + k), r.samplers[k]);
+          cl.bindTexture(uint32_t(1 + k), r.arrays[k]);
+        }
+        for (const batching::GeometryBatch& g : scene.tab.batches[b].geometry) cl.draw(g.firstVertex, g.vertexCount);
+      }
+      // The meshes TAB leaves unbatched (untextured, BLEND), as bind draws them.
+      const std::vector<DrawRun> rest = drawRuns(scene.tab, true);
+      if (!rest.empty()) {
+        cl.useProgram(captureProg);
+        cl.setVertexLayout(sceneLayout());
+        cl.setUniforms(0, mvp);
+        cl.bindTexture(0, recBuf);
+        rec.resetBindings();
+        for (const DrawRun& r : rest) {
+          rec.bind(1, r.texture);
+          rec.tint(r.factor);
+          cl.draw(r.first, r.count);
+        }
+      }
+    } else {
+      for (const DrawRun& r : runs) {
+        rec.bind(1, r.texture);
+        rec.tint(r.factor);
+        cl.draw(r.first, r.count);
+      }
     }
   } else {
     cl.setViewport(vp);

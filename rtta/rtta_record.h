@@ -20,8 +20,9 @@
 // - ghosted (3C):     the important objects first, opaque with depth test and a highlight tint, then the
 //                     others blended back to front with alpha kGhostAlpha and no depth test.
 // Resources are created and uploaded before the first draw of the frame. Filtering is trilinear.
-// Does not implement: ghosted-ao (SSAO and edge enhancement), `--texturing tab` (needs a capture program
-// with TAB's TAM lookup), executing, choosing cameras.
+// `--texturing tab` needs the scene's TAB output batches (batching::runAlgorithm1, then
+// refreshTamIndices); its TAMs are written with opaque materials, as bind draws them.
+// Does not implement: ghosted-ao (SSAO and edge enhancement), executing, choosing cameras.
 #pragma once
 
 #include <array>
@@ -39,7 +40,12 @@ namespace tessera::rtta {
 
 enum class Mode : uint8_t { Std = 0, Rtt = 1, Rtta = 2 };
 enum class Composite : uint8_t { Depth = 0, Transparent = 1, Ghosted = 2 };
+// How the RTTA capture gets its texels: bind (one bind and one draw per texture, atlas_capture) or tab
+// (TAB's output batches: per batch its arrays and TAM bound, one draw per geometry batch,
+// atlas_capture_tab; the meshes TAB does not batch are drawn as with bind afterwards).
+enum class Texturing : uint8_t { Bind = 0, Tab = 1 };
 const char* modeName(Mode m);
+const char* texturingName(Texturing t);
 const char* compositeName(Composite c);
 
 inline constexpr float kTransparentAlpha = 0.5f;
@@ -60,6 +66,7 @@ struct RttaView {
 struct RttaOptions {
   Mode mode = Mode::Rtta;
   Composite composite = Composite::Depth;
+  Texturing texturing = Texturing::Bind;    // RTTA's capture only (RTT always binds)
   int32_t atlasWidth = 0, atlasHeight = 0;  // 0: the smallest power of two >= viewport + 2 border
   ParamOptions params;
   uint32_t allocatedLayers = 0;             // layers of the atlas texture (LayerAllocator); 0 = Td

@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "base/sha256.h"
+#include "batching/batcher.h"
 #include "mta/camera.h"
 #include "raster/cpu_backend.h"
 #include "rtta/rtta_record.h"
@@ -176,6 +177,24 @@ TEST(RttaFrames, BytesAreIdenticalAtOneTwoAndSevenThreads) {
     if (first.empty()) first = hex;
     EXPECT_EQ(hex, first) << threads << " threads";
   }
+}
+
+TEST(RttaCapture, TabTexturingCapturesTheSameAtlasInOneDraw) {
+  RttaScene scene = testing::boxScene(testing::fiveBoxes(), 4);
+  const Rendered bind = run(scene, {.mode = Mode::Rtta, .captureOnly = true});
+  batching::runAlgorithm1(scene.tab, batching::TabParams{});
+  refreshTamIndices(scene);
+  const Rendered tab = run(scene, {.mode = Mode::Rtta, .texturing = Texturing::Tab, .captureOnly = true});
+  auto draws = [](const CommandList& cl) {
+    int n = 0;
+    for (const Command& c : cl.commands()) n += std::holds_alternative<Draw>(c);
+    return n;
+  };
+  EXPECT_EQ(draws(bind.frame.list), 4) << "one draw per texture";
+  EXPECT_EQ(draws(tab.frame.list), 1) << "four 32x32 textures share one array: one geometry batch";
+  // The same texels: one array layer per texture, the same mip chains, opaque materials in the TAM.
+  EXPECT_EQ(bind.be->texture(bind.frame.captureColor)->levels[0], tab.be->texture(tab.frame.captureColor)->levels[0]);
+  EXPECT_EQ(bind.be->texture(bind.frame.captureDepth)->levels[0], tab.be->texture(tab.frame.captureDepth)->levels[0]);
 }
 
 TEST(RttaFrames, RttTakesOnePassPerObjectAndRttaOne) {

@@ -55,10 +55,8 @@ Setup validateArgs(const RttaRenderArgs& a) {
     throw Error("--composite ghosted-ao: screen-space ambient occlusion and edge enhancement are not implemented yet "
                 "(docs/rtta.md, 'Not yet'); use depth, transparent or ghosted");
   else throw Error("--composite '" + a.composite + "': expected depth, transparent or ghosted");
-  if (a.texturing == "tab")
-    throw Error("--texturing tab: the capture program with TAB's texture-array mapping is not implemented yet "
-                "(docs/rtta.md, 'Not yet'); use bind");
-  if (a.texturing != "bind") throw Error("--texturing '" + a.texturing + "': expected bind or tab");
+  if (a.texturing == "tab") s.options.texturing = rtta::Texturing::Tab;
+  else if (a.texturing != "bind") throw Error("--texturing '" + a.texturing + "': expected bind or tab");
   if (a.objects != "mesh" && a.objects != "node") throw Error("--objects '" + a.objects + "': expected mesh or node");
   if (a.border < 0 || a.border > 64) throw Error("--border " + std::to_string(a.border) + ": expected 0..64 pixels");
   s.layers = rtta::parseLayerPolicy(a.layers, "--layers");
@@ -182,7 +180,7 @@ std::vector<std::string> rttaSceneNames() { return builtinRttaSceneNames(); }
 
 nlohmann::json rttaParams(const RttaRenderArgs& a) {
   Setup s = validateArgs(a);
-  const LoadedRttaScene ls = loadRttaScene(a.input, a.objects, a.limits, true);
+  const LoadedRttaScene ls = loadRttaScene(a.input, a.objects, a.limits, true, a.texturing == "tab");
   const mta::CameraPath path = choosePath(a, ls.scene.tab.bounds, ls.scene.vertices.empty());
   if (path.frames.empty()) throw Error(a.path + ": the camera path has no frames");
   mta::validate(path.frames[0], "rtta params: camera path frame 0");
@@ -220,7 +218,7 @@ nlohmann::json rttaParams(const RttaRenderArgs& a) {
 nlohmann::json runRttaRender(const RttaRenderArgs& a) {
   Setup s = validateArgs(a);
   // Everything that can be refused is checked before the output directory is made.
-  const LoadedRttaScene ls = loadRttaScene(a.input, a.objects, a.limits, a.quiet);
+  const LoadedRttaScene ls = loadRttaScene(a.input, a.objects, a.limits, a.quiet, a.texturing == "tab");
   const rtta::RttaScene& scene = ls.scene;
   for (uint32_t id : a.important)
     if (id >= scene.objectNames.size())

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "base/error.h"
+#include "batching/batcher.h"
 #include "batching/input_batches.h"
 #include "model/five_objects.h"
 #include "model/model.h"
@@ -12,7 +13,8 @@ namespace tessera::cli {
 
 std::vector<std::string> builtinRttaSceneNames() { return {"five"}; }
 
-LoadedRttaScene loadRttaScene(const std::string& input, const std::string& objects, const ResourceLimits& limits, bool quiet) {
+LoadedRttaScene loadRttaScene(const std::string& input, const std::string& objects, const ResourceLimits& limits, bool quiet,
+                              bool withTab) {
   const model::ObjectGrouping grouping = model::parseObjectGrouping(objects);
   const model::Model m = input == "five" ? model::fiveObjectModel() : model::loadModel(input, limits);
   batching::InputOptions io;
@@ -27,7 +29,10 @@ LoadedRttaScene loadRttaScene(const std::string& input, const std::string& objec
     names.push_back(groups[g].name);
     for (uint32_t mesh : groups[g].meshes) objectOf[mesh] = g;
   }
-  return {rtta::makeRttaScene(batching::prepareInput(m, io), objectOf, std::move(names))};
+  batching::TabScene tab = batching::prepareInput(m, io);
+  if (withTab) batching::runAlgorithm1(tab, batching::TabParams{});
+  LoadedRttaScene out{rtta::makeRttaScene(std::move(tab), objectOf, std::move(names))};
+  return out;
 }
 
 }  // namespace tessera::cli

@@ -17,6 +17,8 @@ struct LoadedRttaScene {
 std::vector<std::string> builtinRttaSceneNames();
 
 // Throws Error naming the file (or scene) and the reason.
-LoadedRttaScene loadRttaScene(const std::string& input, const std::string& objects, const ResourceLimits& limits, bool quiet);
+// withTab: also run TAB's Algorithm 1 (default limits) for `--texturing tab`.
+LoadedRttaScene loadRttaScene(const std::string& input, const std::string& objects, const ResourceLimits& limits, bool quiet,
+                              bool withTab = false);
 
 }  // namespace tessera::cli
