@@ -20,7 +20,8 @@ std::string sceneHelp() {
 void addCommon(CLI::App* cmd, RttaRenderArgs& a) {
   cmd->add_option("scene", a.input, sceneHelp())->required();
   cmd->add_option("--path", a.path,
-                  "Camera path: orbit, street, thesis (laid out over the scene's bounds) or a camera path file "
+                  "Camera path: orbit, street, thesis (laid out over the scene's bounds; for `five`, orbit is its "
+                  "default camera swung from -45 to +45 degrees about the vertical) or a camera path file "
                   "(docs/mta-camera-path.md)")
       ->capture_default_str();
   addSizeOption(cmd, a.size, "Viewport WxH (the paper measured 1024x1024)")->capture_default_str();

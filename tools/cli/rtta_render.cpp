@@ -79,6 +79,10 @@ Setup validateArgs(const RttaRenderArgs& a) {
 }
 
 mta::CameraPath choosePath(const RttaRenderArgs& a, const std::array<float, 6>& bounds, bool empty) {
+  if (a.input == "five" && a.path == "orbit") {
+    const auto [w, h] = parseSize(a.size, "--size");
+    return fiveOrbit(a.frames, w, h);
+  }
   const auto names = mta::builtinPathNames();
   if (std::find(names.begin(), names.end(), a.path) != names.end()) {
     if (empty) throw Error(a.input + ": the scene has no vertices to lay a camera path over");

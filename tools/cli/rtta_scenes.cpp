@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "base/det_math.h"
 #include "base/error.h"
 #include "batching/batcher.h"
 #include "batching/input_batches.h"
@@ -12,6 +13,26 @@
 namespace tessera::cli {
 
 std::vector<std::string> builtinRttaSceneNames() { return {"five"}; }
+
+mta::CameraPath fiveOrbit(uint32_t frames, int width, int height) {
+  mta::CameraPath p;
+  p.name = "five-orbit";
+  const uint32_t n = frames ? frames : 24;
+  const glm::dvec3 d = model::kFiveObjectEye - model::kFiveObjectTarget;
+  for (uint32_t i = 0; i < n; ++i) {
+    const double angle = n > 1 ? (-0.25 + 0.5 * double(i) / double(n - 1)) * kPi : 0.0;  // -45..+45 degrees
+    const double c = detCos(angle), s = detSin(angle);
+    mta::Camera cam;
+    cam.target = model::kFiveObjectTarget;
+    cam.eye = cam.target + glm::dvec3(c * d.x + s * d.z, d.y, -s * d.x + c * d.z);
+    cam.up = model::kFiveObjectUp;
+    cam.tanHalfFovX = model::kFiveObjectTanHalfFovY * double(width) / double(height);
+    cam.nearPlane = model::kFiveObjectNear;
+    cam.farPlane = model::kFiveObjectFar;
+    p.frames.push_back(cam);
+  }
+  return p;
+}
 
 LoadedRttaScene loadRttaScene(const std::string& input, const std::string& objects, const ResourceLimits& limits, bool quiet,
                               bool withTab) {
