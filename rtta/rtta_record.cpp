@@ -61,10 +61,8 @@ class Recorder {
  public:
   Recorder(const RttaScene& s, CommandList& cl) : s_(s), cl_(cl) {}
 
-  // Texture t of the scene (-1: a 1x1 white texel) with its sampler, bound on `unit` when it changes.
-  void bind(uint32_t unit, int64_t t) {
-    if (bound_ == t) return;
-    bound_ = t;
+  // Texture t of the scene (-1: a 1x1 white texel) and its sampler, created (and uploaded) on first use.
+  ResourceId texture(int64_t t) {
     auto [it, fresh] = textures_.emplace(t, kNone);
     if (fresh) {
       if (t < 0) {
@@ -77,23 +75,36 @@ class Recorder {
         it->second = batching::recordTexture2D(cl_, s_.tab, uint32_t(t));
       }
     }
-    cl_.bindTexture(unit, it->second);
+    return it->second;
+  }
+  uint32_t samplerKey(int64_t t) const {
     const batching::TabTexture* tex = t < 0 ? nullptr : &s_.tab.textures[size_t(t)];
-    const uint32_t key = tex ? uint32_t(tex->wrapS) * 16 + uint32_t(tex->wrapT) : 0;
-    if (key != boundSampler_) {
-      boundSampler_ = key;
-      auto [sit, sfresh] = samplers_.emplace(key, kNone);
-      if (sfresh)
-        sit->second = cl_.createSampler(tex ? batching::tabSampler(tex->wrapS, tex->wrapT)
-                                            : batching::tabSampler(batching::WrapMode::Repeat, batching::WrapMode::Repeat));
-      cl_.bindSampler(unit, sit->second);
+    return tex ? uint32_t(tex->wrapS) * 16 + uint32_t(tex->wrapT) : 0;
+  }
+  ResourceId sampler(int64_t t) {
+    auto [it, fresh] = samplers_.emplace(samplerKey(t), kNone);
+    if (fresh) {
+      const batching::TabTexture* tex = t < 0 ? nullptr : &s_.tab.textures[size_t(t)];
+      it->second = cl_.createSampler(tex ? batching::tabSampler(tex->wrapS, tex->wrapT)
+                                         : batching::tabSampler(batching::WrapMode::Repeat, batching::WrapMode::Repeat));
+    }
+    return it->second;
+  }
+  // Binds texture t and its sampler on `unit`, each only when it changes (so the counters see the
+  // binds a state-tracking renderer would issue, and no more).
+  void bind(uint32_t unit, int64_t t) {
+    if (bound_ == t) return;
+    bound_ = t;
+    cl_.bindTexture(unit, texture(t));
+    if (samplerKey(t) != boundSampler_) {
+      boundSampler_ = samplerKey(t);
+      cl_.bindSampler(unit, sampler(t));
     }
   }
-  // Uploads every texture before the first draw (the frame's resources all come first).
-  void createAll(uint32_t unit, const std::vector<DrawRun>& runs) {
-    for (const DrawRun& r : runs) bind(unit, r.texture);
-    bound_ = -2;
-    boundSampler_ = ~0u;
+  // Creates and uploads every texture and sampler before the first draw (the frame's resources all
+  // come first), without binding anything.
+  void createAll(const std::vector<DrawRun>& runs) {
+    for (const DrawRun& r : runs) texture(r.texture), sampler(r.texture);
   }
   void tint(const std::array<float, 4>& f) {
     if (haveTint_ && tint_ == f) return;
@@ -193,7 +204,7 @@ RttaFrame recordRttaFrame(const RttaScene& scene, const RttaView& view, const Rt
   const ResourceId screenDepth = f.screenDepth = target(cl, Format::D32F, view.width, view.height, 1, nullptr);
   const ResourceId vb = cl.createBuffer(BufferKind::Vertex, asBytes(scene.vertices));
   const bool tab = o.mode == Mode::Rtta && o.texturing == Texturing::Tab;
-  rec.createAll(1, tab ? drawRuns(scene.tab, true) : runs);
+  rec.createAll(tab ? drawRuns(scene.tab, true) : runs);
   const ResourceId texturedProg = o.mode == Mode::Std ? cl.createProgram("textured") : kNone;
   const ResourceId captureProg = o.mode == Mode::Std ? kNone : cl.createProgram("atlas_capture");
   const ResourceId spriteProg = o.mode == Mode::Std || o.captureOnly ? kNone : cl.createProgram("atlas_sprite");

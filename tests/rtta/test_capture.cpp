@@ -6,6 +6,7 @@
 #include "base/sha256.h"
 #include "batching/batcher.h"
 #include "mta/camera.h"
+#include "raster/counters.h"
 #include "raster/cpu_backend.h"
 #include "rtta/rtta_record.h"
 #include "rtta/shift_explain.h"
@@ -206,6 +207,12 @@ TEST(RttaFrames, RttTakesOnePassPerObjectAndRttaOne) {
     for (const Command& c : cl.commands()) n += std::holds_alternative<SetRenderTarget>(c);
     return n;
   };
+  // Texture binds as a state-tracking renderer issues them, none while resources are created: STD binds
+  // each of the 4 textures once (meshes are in texture order); RTTA the same 4 in its capture, the record
+  // buffer, and the atlas colour and depth for the composite.
+  const RttaFrame stdFrame = recordRttaFrame(scene, view(), {.mode = Mode::Std});
+  EXPECT_EQ(countCommands(stdFrame.list).texture_binds, 4u);
+  EXPECT_EQ(countCommands(rtta.list).texture_binds, 4u + 1u + 2u);
   EXPECT_EQ(targets(rtt.list), 5 + 1);   // one per object, then the screen
   EXPECT_EQ(targets(rtta.list), 1 + 1);  // the atlas, then the screen
   EXPECT_EQ(rtt.targetBytes, uint64_t(kW) * kH * 5 * (4 + 8 + 4));
