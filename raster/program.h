@@ -94,6 +94,12 @@ class Program {
   // upper-bound passes on z -/+ the depth precision (docs/crosscheck.md, DEPTH_NEAR_EQUAL), so the
   // program must be monotone (non-decreasing) in z, as it must be in what it samples.
   virtual bool readsFragDepth() const { return false; }
+  // The program's outputs are non-decreasing in every value it samples, so its runs on the sampler's
+  // lower and upper bounds bound every legal output (docs/crosscheck.md). A program that is not
+  // (atlas_sprite_ao: occlusion counts depth comparisons) gets, in provenance mode, the whole output
+  // range at every fragment that read a texel carrying an interval (INPUT_INTERVAL); where every texel
+  // it read is exact, its single result is exact.
+  virtual bool monotoneInSamples() const { return true; }
 
   virtual void shadeVertices(std::span<const VertexIn> in, std::span<VertexOut> out, const ShadeContext& ctx) const = 0;
   // Optional geometry stage, once per triangle after vertex shading and before clipping. May change

@@ -578,6 +578,7 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
   du.func = ds.depth.func;
   // A program-written depth is no function of the primitive's positions alone: no signature (F11).
   const bool lateDepth = ds.program->writesDepth(), readsZ = ds.program->readsFragDepth();
+  const bool monotone = ds.program->monotoneInSamples();
   du.depthSig = lateDepth ? 0 : t.depthSig;
   du.depthEpoch = ds.depthEpoch;
 
@@ -745,7 +746,11 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
         u.discardTie = discardTie >> p & 1;
         u.keepValue = keep;
         u.ambiguous = amb;
-        u.dontCare = sp.dontCare[size_t(p)] || unbounded;
+        // A program that is not monotone in what it samples (Program::monotoneInSamples) cannot be
+        // bounded by its runs on the interval images: where it read a texel carrying an interval, every
+        // output is legal (classed INPUT_INTERVAL); where it read only exact texels its runs agree.
+        const bool freeInput = !monotone && (sp.classes[size_t(p)] & kInputInterval) != 0;
+        u.dontCare = sp.dontCare[size_t(p)] || unbounded || freeInput;
         u.posTolPx = posTolPx;
         u.depthTest = du.depthTest, u.depthWrite = du.depthWrite, u.depthUnbounded = du.depthUnbounded;
         u.func = du.func, u.depthSig = du.depthSig, u.depthEpoch = du.depthEpoch;

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <fmt/format.h>
 #include <map>
+#include <utility>
 
 #include "base/error.h"
 #include "batching/tab_resources.h"
 #include "raster/limits.h"
+#include "raster/programs/atlas_ao.h"
 #include "rtta/record_buffer.h"
 #include "rtta/transform.h"
 
@@ -15,7 +17,13 @@ namespace tessera::rtta {
 const char* modeName(Mode m) { return m == Mode::Std ? "std" : m == Mode::Rtt ? "rtt" : "rtta"; }
 const char* texturingName(Texturing t) { return t == Texturing::Bind ? "bind" : "tab"; }
 const char* compositeName(Composite c) {
-  return c == Composite::Depth ? "depth" : c == Composite::Transparent ? "transparent" : "ghosted";
+  switch (c) {
+    case Composite::Depth: return "depth";
+    case Composite::Transparent: return "transparent";
+    case Composite::Ghosted: return "ghosted";
+    case Composite::GhostedAo: return "ghosted-ao";
+  }
+  return "?";
 }
 
 int32_t defaultAtlasSide(int32_t viewportSide, int32_t border) {
@@ -186,6 +194,20 @@ void addSprite(std::vector<SpriteVertex>& v, const PixelRect& screen, const Rect
   for (int k : {0, 1, 2, 0, 2, 3}) v.push_back(c[k]);
 }
 
+// The window depths z_w (depth range [0, 1]) of a box's corners: (min, max), clamped to [0, 1]; a corner
+// behind the eye (w <= 0) makes the span the whole range.
+std::pair<double, double> windowDepthRange(const Box3& b, const glm::mat4& mvp) {
+  double lo = 1.0, hi = 0.0;
+  for (int c = 0; c < 8; ++c) {
+    const glm::dvec4 v{(c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y, (c & 4) ? b.hi.z : b.lo.z, 1.0};
+    const glm::dvec4 clip = glm::dmat4(mvp) * v;
+    if (!(clip.w > 0.0)) return {0.0, 1.0};
+    const double z = std::clamp(0.5 * (clip.z / clip.w) + 0.5, 0.0, 1.0);
+    lo = std::min(lo, z), hi = std::max(hi, z);
+  }
+  return {lo, hi};
+}
+
 }  // namespace
 
 RttaFrame recordRttaFrame(const RttaScene& scene, const RttaView& view, const RttaOptions& o) {
@@ -208,6 +230,14 @@ RttaFrame recordRttaFrame(const RttaScene& scene, const RttaView& view, const Rt
   const ResourceId texturedProg = o.mode == Mode::Std ? cl.createProgram("textured") : kNone;
   const ResourceId captureProg = o.mode == Mode::Std ? kNone : cl.createProgram("atlas_capture");
   const ResourceId spriteProg = o.mode == Mode::Std || o.captureOnly ? kNone : cl.createProgram("atlas_sprite");
+  const bool ao = o.composite == Composite::GhostedAo && spriteProg != kNone;
+  const ResourceId aoProg = ao ? cl.createProgram("atlas_sprite_ao") : kNone;
+  if (ao && o.mode == Mode::Rtta && o.params.border < programs::kAoRadius)
+    throw Error(fmt::format("--composite ghosted-ao: --border {} is narrower than the occlusion kernel's radius {}, so "
+                            "the kernel would read a neighbour's atlas region",
+                            o.params.border, programs::kAoRadius));
+  if (o.atlasInput && (o.mode != Mode::Rtta || o.captureOnly))
+    throw Error("an uploaded atlas replaces RTTA's capture: it needs --mode rtta and a composite");
   const std::vector<float> mvp = matrixSlots(view.mvp);
 
   std::vector<uint32_t> visible;
@@ -270,6 +300,20 @@ RttaFrame recordRttaFrame(const RttaScene& scene, const RttaView& view, const Rt
     const uint32_t h = o.mode == Mode::Rtta ? uint32_t(f.atlas.height) : view.height;
     f.captureColor = target(cl, Format::RGBA8, w, h, layers, &f.targetBytes);
     f.captureDepth = target(cl, Format::RG32F, w, h, layers, &f.targetBytes);
+    if (o.atlasInput) {
+      const AtlasImages& in = *o.atlasInput;
+      if (in.color.size() != layers || in.depth.size() != layers)
+        throw Error(fmt::format("uploaded atlas: {} colour and {} depth layers, the frame's atlas has {}",
+                                in.color.size(), in.depth.size(), layers));
+      for (uint32_t l = 0; l < layers; ++l) {
+        if (in.color[l].size() != size_t(w) * h * 4 || in.depth[l].size() != size_t(w) * h * 8)
+          throw Error(fmt::format("uploaded atlas layer {}: {} colour and {} depth bytes, a {}x{} layer needs {} and {}",
+                                  l, in.color[l].size(), in.depth[l].size(), w, h, size_t(w) * h * 4,
+                                  size_t(w) * h * 8));
+        cl.uploadTexture(f.captureColor, 0, l, in.color[l]);
+        cl.uploadTexture(f.captureDepth, 0, l, in.depth[l]);
+      }
+    }
   }
   const ResourceId captureZ =
       o.mode == Mode::Std ? kNone
@@ -320,7 +364,9 @@ RttaFrame recordRttaFrame(const RttaScene& scene, const RttaView& view, const Rt
     cl.clearColor(1, kAtlasDepthClear);
     cl.clearDepth(1.0f);
   };
-  if (o.mode == Mode::Rtta) {
+  if (o.mode == Mode::Rtta && o.atlasInput) {
+    // The atlas was uploaded: no capture pass.
+  } else if (o.mode == Mode::Rtta) {
     RenderTarget rt;
     rt.color[0] = f.captureColor;
     rt.color[1] = f.captureDepth;
@@ -392,7 +438,8 @@ RttaFrame recordRttaFrame(const RttaScene& scene, const RttaView& view, const Rt
   // --- composite ---
   std::vector<uint32_t> order = visible;
   std::vector<uint32_t> important = o.important;
-  if (o.composite == Composite::Ghosted && important.empty() && !visible.empty()) {
+  const bool ghosted = o.composite == Composite::Ghosted || o.composite == Composite::GhostedAo;
+  if (ghosted && important.empty() && !visible.empty()) {
     uint32_t best = visible[0];
     for (uint32_t id : visible) {
       const PixelRect &a = f.records[id].inner, &b = f.records[best].inner;
@@ -473,8 +520,26 @@ RttaFrame recordRttaFrame(const RttaScene& scene, const RttaView& view, const Rt
     std::vector<uint32_t> front, rest;
     for (uint32_t id : visible) (isImportant(id) ? front : rest).push_back(id);
     cl.setDepthState(depthOn);
-    rec.tint(kHighlightTint);
-    drawSprites(front);
+    if (ao) {
+      // 3D: occlusion and edges on each important object's own region, then the ghosted rest.
+      cl.useProgram(aoProg);
+      cl.setUniforms(7, std::vector<float>{1, 1, 1, 1});
+      cl.setUniforms(9, kEdgeColor);
+      std::vector<float> factors(8, 0.0f);
+      for (int k = 0; k <= 4; ++k) factors[size_t(k)] = 1.0f - float(k) / 8.0f;
+      cl.setUniforms(10, factors);
+      for (uint32_t id : front) {
+        const auto [zlo, zhi] = windowDepthRange(f.records[id].world, view.mvp);
+        const double span = zhi - zlo;
+        cl.setUniforms(8, std::vector<float>{float(span * kAoBiasFraction), float(span * kAoEdgeFraction), 0, 0});
+        cl.draw(spriteOf[id].first, spriteOf[id].second);
+      }
+      cl.useProgram(spriteProg);
+      rec.resetUniformCache();
+    } else {
+      rec.tint(kHighlightTint);
+      drawSprites(front);
+    }
     cl.setDepthState({});
     cl.setBlendState(over);
     rec.tint({1, 1, 1, kGhostAlpha});

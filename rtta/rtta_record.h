@@ -18,11 +18,17 @@
 //                     kTransparentAlpha, back to front: distance from the eye to the centre of B_world
 //                     descending, ties by id;
 // - ghosted (3C):     the important objects first, opaque with depth test and a highlight tint, then the
-//                     others blended back to front with alpha kGhostAlpha and no depth test.
+//                     others blended back to front with alpha kGhostAlpha and no depth test;
+// - ghosted-ao (3D):  ghosted, but the important objects are drawn by `atlas_sprite_ao`: ambient
+//                     occlusion and edge enhancement computed on each one's own atlas region (the
+//                     border, at least programs::kAoRadius, keeps the kernel off its neighbours), with
+//                     a bias and an edge step derived from the object's window-depth span.
 // Resources are created and uploaded before the first draw of the frame. Filtering is trilinear.
 // `--texturing tab` needs the scene's TAB output batches (batching::runAlgorithm1, then
 // refreshTamIndices); its TAMs are written with opaque materials, as bind draws them.
-// Does not implement: ghosted-ao (SSAO and edge enhancement), executing, choosing cameras.
+// `atlasInput` replaces the capture by uploaded atlas images (for judging the post-process on another
+// renderer's capture, docs/rtta.md "ghosted-ao").
+// Does not implement: executing, choosing cameras.
 #pragma once
 
 #include <array>
@@ -39,7 +45,7 @@
 namespace tessera::rtta {
 
 enum class Mode : uint8_t { Std = 0, Rtt = 1, Rtta = 2 };
-enum class Composite : uint8_t { Depth = 0, Transparent = 1, Ghosted = 2 };
+enum class Composite : uint8_t { Depth = 0, Transparent = 1, Ghosted = 2, GhostedAo = 3 };
 // How the RTTA capture gets its texels: bind (one bind and one draw per texture, atlas_capture) or tab
 // (TAB's output batches: per batch its arrays and TAM bound, one draw per geometry batch,
 // atlas_capture_tab; the meshes TAB does not batch are drawn as with bind afterwards).
@@ -51,6 +57,12 @@ const char* compositeName(Composite c);
 inline constexpr float kTransparentAlpha = 0.5f;
 inline constexpr float kGhostAlpha = 0.25f;
 inline constexpr std::array<float, 4> kHighlightTint{1.0f, 0.75f, 0.5f, 1.0f};
+// ghosted-ao: the occlusion bias and the edge step are these fractions of the important object's
+// window-depth span (its B_world corners' z_w, clamped to [0, 1]); the factor for k occluding kernel
+// pairs of 4 is 1 - k / 8 (exact in float); edges are drawn in kEdgeColor.
+inline constexpr double kAoBiasFraction = 1.0 / 512.0;
+inline constexpr double kAoEdgeFraction = 1.0 / 16.0;
+inline constexpr std::array<float, 4> kEdgeColor{0.0f, 0.0f, 0.0f, 1.0f};
 // The atlas colour clear: alpha 0 is the reserved "no object here" value that border texels keep.
 inline constexpr std::array<float, 4> kAtlasClear{0.0f, 0.0f, 0.0f, 0.0f};
 // The depth attachment's clear (RG32F): (far, not covered).
@@ -63,6 +75,12 @@ struct RttaView {
   std::array<float, 4> clear{0.62f, 0.74f, 0.88f, 1.0f};
 };
 
+// A captured atlas given as images instead of rendered: per layer, level 0, rows bottom first, in the
+// capture's formats (colour RGBA8, window depth RG32F). Layer count and size must be the frame's.
+struct AtlasImages {
+  std::vector<std::vector<uint8_t>> color, depth;
+};
+
 struct RttaOptions {
   Mode mode = Mode::Rtta;
   Composite composite = Composite::Depth;
@@ -72,6 +90,7 @@ struct RttaOptions {
   uint32_t allocatedLayers = 0;             // layers of the atlas texture (LayerAllocator); 0 = Td
   std::vector<uint32_t> important;          // ghosted: object ids; empty = the largest B_viewport
   bool captureOnly = false;                 // RTT / RTTA: end the frame on the capture target
+  const AtlasImages* atlasInput = nullptr;  // RTTA: upload these instead of capturing (no capture pass)
 };
 
 struct RttaFrame {

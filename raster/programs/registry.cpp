@@ -15,14 +15,15 @@ const Program& objectId();
 const Program& atlasCapture();
 const Program& atlasSprite();
 const Program& atlasCaptureTab();
+const Program& atlasSpriteAo();
 }  // namespace programs
 
-static const std::array<const Program*, 9>& table() {
-  static const std::array<const Program*, 9> t = {&programs::flatColor(),     &programs::vertexColor(),
+static const std::array<const Program*, 10>& table() {
+  static const std::array<const Program*, 10> t = {&programs::flatColor(),     &programs::vertexColor(),
                                                   &programs::textured(),      &programs::texarrayBatch(),
                                                   &programs::atlasDisplace(), &programs::objectId(),
                                                   &programs::atlasCapture(),  &programs::atlasSprite(),
-                                                  &programs::atlasCaptureTab()};
+                                                  &programs::atlasCaptureTab(), &programs::atlasSpriteAo()};
   return t;
 }
 

@@ -108,10 +108,17 @@ case "$case_name" in
       b=$(python3 -c "import json; print([r for r in json.load(open('t/frames.json'))['frames'] if r['frame'] == $f][0]['image_sha256'])")
       [ "$a" = "$b" ] || fail "frame $f: the TAB capture composites to another image than the bind capture"
     done
+    # ghosted-ao (Fig. 3D): the border defaults to the kernel's radius; occlusion and edges darken the
+    # important object, so its composite differs from ghosted's.
+    "$tessera" rtta render five --mode rtta --composite ghosted-ao --important 2 --frames 1 --size 96x72 --save-every 1 -o ao --quiet > ao.json
+    "$tessera" rtta render five --mode rtta --composite ghosted --important 2 --border 2 --frames 1 --size 96x72 --save-every 1 -o gh --quiet > /dev/null
+    [ "$(json_field ao.json "['border']")" = "2" ] || fail "ghosted-ao did not default to a border of 2"
+    for f in rtta_0000.png rtta_0000.tframe atlas_0000.tframe; do [ -s "ao/$f" ] || fail "ghosted-ao did not write $f"; done
+    cmp -s ao/rtta_0000.png gh/rtta_0000.png && fail "ghosted-ao draws the same image as ghosted"
     "$tessera" rtta params "$src/data/railway.glb" --size 128x96 > params.json
     [ "$(python3 -c "import json; print(len(json.load(open('params.json'))['records']))")" = "33" ] || fail "railway: not 33 records"
     "$tessera" rtta render --help > help.txt
-    for word in "--composite" "--objects" "--layers" "--texturing" "--atlas" "--border" "ghosted"; do
+    for word in "--composite" "--objects" "--layers" "--texturing" "--atlas" "--border" "ghosted-ao"; do
       grep -qF -- "$word" help.txt || fail "rtta render --help does not explain $word"
     done
     ;;
@@ -128,7 +135,8 @@ case "$case_name" in
     refused 2 "--border 65" "$tessera" rtta render five --border 65 -o o1
     refused 2 "--atlas: atlas 128x128: must hold the viewport 128x128 plus a border of 1" "$tessera" rtta render five --size 128x128 --atlas 128x128 -o o1
     refused 2 "--mode 'nope'" "$tessera" rtta render five --mode nope -o o1
-    refused 2 "--composite ghosted-ao" "$tessera" rtta render five --composite ghosted-ao -o o1
+    refused 2 "--border 1: --composite ghosted-ao needs at least 2 (the occlusion kernel's radius)" \
+      "$tessera" rtta render five --composite ghosted-ao --border 1 -o o1
     refused 2 "--texturing 'bound'" "$tessera" rtta render five --texturing bound -o o1
     refused 2 "--objects 'x'" "$tessera" rtta render five --objects x -o o1
     refused 2 "--layers 'lazy:0'" "$tessera" rtta render five --layers lazy:0 -o o1

@@ -28,8 +28,9 @@ void addCommon(CLI::App* cmd, RttaRenderArgs& a) {
   cmd->add_option("--atlas", a.atlas,
                   "Atlas layer size WxH, at least the viewport plus the border on each side (default: the smallest "
                   "power of two that holds it; powers of two make the transforms exact)");
-  cmd->add_option("--border", a.border, "Border in pixels around every atlas region (0..64); it keeps alpha 0")
-      ->capture_default_str();
+  cmd->add_option("--border", a.border,
+                  "Border in pixels around every atlas region (0..64); it keeps alpha 0 (default: 1, or 2 for "
+                  "--composite ghosted-ao, whose occlusion kernel reaches 2 texels)");
   cmd->add_flag("--no-cull", a.noCull, "No view-frustum culling (the paper's Table 1 runs); off-screen objects still get no region");
   cmd->add_option("--objects", a.objects, "What an object is: mesh (one per model mesh) or node (one per scene-graph node instance)")
       ->capture_default_str();
@@ -52,10 +53,11 @@ void addRender(CLI::App* rtta) {
   addCommon(render, *a);
   render->add_option("--mode", a->mode, "std, rtt, rtta or all")->capture_default_str();
   render->add_option("--composite", a->composite,
-                     "depth (3A: depth sprites), transparent (3B: blended back to front) or ghosted (3C: --important "
-                     "objects opaque and highlighted, the rest translucent)")
+                     "depth (3A: depth sprites), transparent (3B: blended back to front), ghosted (3C: --important "
+                     "objects opaque and highlighted, the rest translucent) or ghosted-ao (3D: ghosted, with ambient "
+                     "occlusion and edge enhancement computed on the important objects' own atlas regions)")
       ->capture_default_str();
-  render->add_option("--important", a->important, "Object ids shown opaque by --composite ghosted (default: the largest on screen)")
+  render->add_option("--important", a->important, "Object ids shown opaque by --composite ghosted / ghosted-ao (default: the largest on screen)")
       ->delimiter(',');
   render->add_option("--frames", a->frames, "Frames (0 = the path's own count)")->capture_default_str();
   addThreadsOption(render, a->threads, "Oracle worker threads; images never depend on it");

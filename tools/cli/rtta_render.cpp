@@ -15,6 +15,7 @@
 #include "raster/counters.h"
 #include "raster/cpu_backend.h"
 #include "raster/image_io.h"
+#include "raster/programs/atlas_ao.h"
 #include "raster/serialize.h"
 #include "rtta/layer_policy.h"
 #include "rtta/rtta_record.h"
@@ -51,27 +52,33 @@ Setup validateArgs(const RttaRenderArgs& a) {
   if (a.composite == "depth") s.options.composite = Composite::Depth;
   else if (a.composite == "transparent") s.options.composite = Composite::Transparent;
   else if (a.composite == "ghosted") s.options.composite = Composite::Ghosted;
-  else if (a.composite == "ghosted-ao")
-    throw Error("--composite ghosted-ao: screen-space ambient occlusion and edge enhancement are not implemented yet "
-                "(docs/rtta.md, 'Not yet'); use depth, transparent or ghosted");
-  else throw Error("--composite '" + a.composite + "': expected depth, transparent or ghosted");
+  else if (a.composite == "ghosted-ao") s.options.composite = Composite::GhostedAo;
+  else throw Error("--composite '" + a.composite + "': expected depth, transparent, ghosted or ghosted-ao");
   if (a.texturing == "tab") s.options.texturing = rtta::Texturing::Tab;
   else if (a.texturing != "bind") throw Error("--texturing '" + a.texturing + "': expected bind or tab");
   if (a.objects != "mesh" && a.objects != "node") throw Error("--objects '" + a.objects + "': expected mesh or node");
-  if (a.border < 0 || a.border > 64) throw Error("--border " + std::to_string(a.border) + ": expected 0..64 pixels");
+  // The default border is 1 texel, or the occlusion kernel's radius for ghosted-ao (docs/rtta.md).
+  const int32_t border = a.border != kDefaultBorder ? a.border
+                         : s.options.composite == Composite::GhostedAo ? programs::kAoRadius
+                                                                        : 1;
+  if (border < 0 || border > 64) throw Error("--border " + std::to_string(border) + ": expected 0..64 pixels");
+  if (s.options.composite == Composite::GhostedAo && border < programs::kAoRadius)
+    throw Error("--border " + std::to_string(border) + ": --composite ghosted-ao needs at least " +
+                std::to_string(programs::kAoRadius) +
+                " (the occlusion kernel's radius), or its kernel would read a neighbour's atlas region");
   s.layers = rtta::parseLayerPolicy(a.layers, "--layers");
   std::tie(s.w, s.h) = parseSize(a.size, "--size");
-  s.options.params.border = a.border;
+  s.options.params.border = border;
   s.options.params.cull = !a.noCull;
   s.options.important = a.important;
   if (!a.atlas.empty()) {
     std::tie(s.options.atlasWidth, s.options.atlasHeight) = parseSize(a.atlas, "--atlas");
   } else {
-    s.options.atlasWidth = rtta::defaultAtlasSide(s.w, a.border);
-    s.options.atlasHeight = rtta::defaultAtlasSide(s.h, a.border);
+    s.options.atlasWidth = rtta::defaultAtlasSide(s.w, border);
+    s.options.atlasHeight = rtta::defaultAtlasSide(s.h, border);
   }
   try {
-    rtta::validateAtlas(s.options.atlasWidth, s.options.atlasHeight, {0, 0, s.w, s.h}, a.border);
+    rtta::validateAtlas(s.options.atlasWidth, s.options.atlasHeight, {0, 0, s.w, s.h}, border);
   } catch (const Error& e) {
     throw Error(std::string("--atlas: ") + e.what());
   }
@@ -211,7 +218,7 @@ nlohmann::json rttaParams(const RttaRenderArgs& a) {
   return {{"scene", a.input},
           {"objects", a.objects},
           {"viewport", {s.w, s.h}},
-          {"border", a.border},
+          {"border", s.options.params.border},
           {"atlas", {{"width", f.atlas.width}, {"height", f.atlas.height}, {"layers", f.atlas.layers}}},
           {"inexact_transforms", f.inexactTransforms},
           {"camera", {{"eye", {path.frames[0].eye.x, path.frames[0].eye.y, path.frames[0].eye.z}},
@@ -420,7 +427,7 @@ nlohmann::json runRttaRender(const RttaRenderArgs& a) {
                           {"object_count", scene.objectNames.size()},
                           {"size", a.size},
                           {"composite", a.composite},
-                          {"border", a.border},
+                          {"border", s.options.params.border},
                           {"culling", !a.noCull},
                           {"layers_policy", s.layers.name()},
                           {"frames", path.frames.size()},

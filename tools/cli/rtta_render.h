@@ -13,6 +13,9 @@
 
 namespace tessera::cli {
 
+// --border not given (no one passes this value): 1, or the occlusion kernel's radius for ghosted-ao.
+inline constexpr int32_t kDefaultBorder = INT32_MIN;
+
 struct RttaRenderArgs {
   std::string input;  // a model file, or a built-in scene name (rttaSceneNames())
   std::string out;
@@ -22,7 +25,7 @@ struct RttaRenderArgs {
   uint32_t frames = 0;       // 0 = the path's own count
   std::string size = "1024x1024";
   std::string atlas;         // WxH; empty = the smallest power of two >= viewport + 2 border per side
-  int32_t border = 1;
+  int32_t border = kDefaultBorder;  // kDefaultBorder: 1, or the occlusion kernel's radius for ghosted-ao
   bool noCull = false;
   std::string objects = "mesh";   // mesh | node
   std::string texturing = "bind"; // bind | tab

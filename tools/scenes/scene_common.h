@@ -42,5 +42,6 @@ void buildRttaFive(CommandList& cl, int w, int h);
 void buildRttaFiveAtlas(CommandList& cl, int w, int h);
 void buildRttaFiveTransparent(CommandList& cl, int w, int h);
 void buildRttaFiveGhosted(CommandList& cl, int w, int h);
+void buildRttaFiveGhostedAo(CommandList& cl, int w, int h);
 
 }  // namespace tessera::scenes

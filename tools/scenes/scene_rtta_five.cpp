@@ -1,9 +1,10 @@
-// rtta_five, rtta_five_atlas, rtta_five_transparent, rtta_five_ghosted: render-to-texture-atlas through
+// rtta_five, rtta_five_atlas, rtta_five_transparent, rtta_five_ghosted, rtta_five_ghosted_ao: render-to-texture-atlas through
 // the rtta library itself (Trapp & Döllner 2010) on the built-in five-object brake assembly
 // (model/five_objects.h, the paper's Fig. 1), seen from its default camera: Algorithm 1 (culling,
 // projection, packing, transforms), the record buffer, one capture pass by screen-space vertex
 // displacement (atlas_capture: colour, window depth, depth), and the composites of Fig. 3 with
-// atlas_sprite: depth sprites (A), transparent back to front (B), ghosted with the pad highlighted (C).
+// atlas_sprite: depth sprites (A), transparent back to front (B), ghosted with the pad highlighted (C),
+// and ghosted with occlusion and edges on the caliper by atlas_sprite_ao (D).
 // rtta_five_atlas ends on the capture target, so its atlas colour and depth layers are the presented
 // images. The atlas is twice the default side, so every object lands in layer 0: softpipe misroutes
 // fragments of layers >= 1 whose depth test fails into layer 0 (docs/softpipe-edge-flips.md §1), and
@@ -13,6 +14,7 @@
 #include "model/object_groups.h"
 #include "mta/camera.h"
 #include "rtta/rtta_record.h"
+#include "tools/scenes/rtta_five.h"
 #include "tools/scenes/scene_common.h"
 
 namespace tessera::scenes {
@@ -34,7 +36,10 @@ const rtta::RttaScene& fiveScene() {
   return s;
 }
 
-void buildFive(CommandList& cl, int w, int h, rtta::Composite composite, bool captureOnly) {
+}  // namespace
+
+rtta::RttaFrame recordFive(int w, int h, rtta::Composite composite, bool captureOnly,
+                           const rtta::AtlasImages* atlasInput, const std::vector<uint32_t>* important) {
   mta::Camera c;
   c.eye = model::kFiveObjectEye;
   c.target = model::kFiveObjectTarget;
@@ -52,10 +57,17 @@ void buildFive(CommandList& cl, int w, int h, rtta::Composite composite, bool ca
   o.params.border = 2;
   o.atlasWidth = 2 * rtta::defaultAtlasSide(w, o.params.border);
   o.atlasHeight = 2 * rtta::defaultAtlasSide(h, o.params.border);
-  o.important = {1};  // the pad, as the paper's Fig. 3C highlights the brake pad
+  // 3C: the pad, as the paper's Fig. 3C highlights the brake pad; 3D: the caliper, whose creases show
+  // the occlusion and the edges.
+  o.important = important ? *important : std::vector<uint32_t>{composite == rtta::Composite::GhostedAo ? 2u : 1u};
   o.captureOnly = captureOnly;
-  rtta::RttaFrame f = rtta::recordRttaFrame(fiveScene(), v, o);
-  cl = std::move(f.list);
+  o.atlasInput = atlasInput;
+  return rtta::recordRttaFrame(fiveScene(), v, o);
+}
+
+namespace {
+void buildFive(CommandList& cl, int w, int h, rtta::Composite composite, bool captureOnly) {
+  cl = recordFive(w, h, composite, captureOnly, nullptr).list;
 }
 
 }  // namespace
@@ -64,5 +76,6 @@ void buildRttaFive(CommandList& cl, int w, int h) { buildFive(cl, w, h, rtta::Co
 void buildRttaFiveAtlas(CommandList& cl, int w, int h) { buildFive(cl, w, h, rtta::Composite::Depth, true); }
 void buildRttaFiveTransparent(CommandList& cl, int w, int h) { buildFive(cl, w, h, rtta::Composite::Transparent, false); }
 void buildRttaFiveGhosted(CommandList& cl, int w, int h) { buildFive(cl, w, h, rtta::Composite::Ghosted, false); }
+void buildRttaFiveGhostedAo(CommandList& cl, int w, int h) { buildFive(cl, w, h, rtta::Composite::GhostedAo, false); }
 
 }  // namespace tessera::scenes

@@ -36,6 +36,7 @@ const std::vector<Entry>& entries() {
       {{"rtta_five", "render-to-texture-atlas: the five objects captured, then composited with depth sprites (gl_FragDepth from the atlas): the plain rendering again", 160, 160}, buildRttaFive},
       {{"rtta_five_transparent", "render-to-texture-atlas: the five objects composited translucent, back to front, no depth test (Fig. 3B)", 160, 160}, buildRttaFiveTransparent},
       {{"rtta_five_ghosted", "render-to-texture-atlas: ghosted view, the pad opaque and highlighted, the rest translucent (Fig. 3C)", 160, 160}, buildRttaFiveGhosted},
+      {{"rtta_five_ghosted_ao", "render-to-texture-atlas: ghosted view with ambient occlusion and edges computed on the caliper's own atlas region (Fig. 3D; atlas_sprite_ao, not monotone: INPUT_INTERVAL)", 160, 160}, buildRttaFiveGhostedAo},
   };
   return e;
 }
