@@ -126,6 +126,14 @@ std::vector<Mutation> build() {
          "    precise float c0 = w + dx, c1 = w - dx, c2 = w + dy, c3 = w - dy;"}},
        StateFault::None});
 
+  add({"ao_crease_sign_flipped",
+       "a sign slip in a post-process comparison: convex edges taken for concave creases",
+       "source",
+       "atlas_sprite_ao counts a pair as occluding when its second difference is below +bias instead of -bias",
+       "",
+       {{"atlas_sprite_ao", "second < -u[8].x", "second < u[8].x"}},
+       StateFault::None});
+
   // --- per-fragment operations -----------------------------------------------------------------
   add({"depth_strict_swapped",
        "depth comparison strictness swapped (LESS <-> LEQUAL, GREATER <-> GEQUAL)",

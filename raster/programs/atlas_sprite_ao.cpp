@@ -21,35 +21,21 @@
 #include <cstdint>
 
 #include "raster/programs/atlas_ao.h"
-#include "raster/programs/common.h"
+#include "raster/programs/atlas_sprite_base.h"
 
 namespace tessera::programs {
 namespace {
-inline uint32_t toShift(float f) {
-  const int32_t v = (f > -16777216.0f && f < 16777216.0f) ? int32_t(f) : INT32_MIN;
-  return uint32_t(v);
-}
-
-class AtlasSpriteAo final : public Program {
+class AtlasSpriteAo final : public AtlasSpriteBase {
  public:
   std::string_view name() const override { return "atlas_sprite_ao"; }
-  int varyingCount() const override { return 0; }
-  bool writesDepth() const override { return true; }
   bool monotoneInSamples() const override { return false; }
-  void shadeVertices(std::span<const VertexIn> in, std::span<VertexOut> out, const ShadeContext&) const override {
-    for (size_t i = 0; i < in.size(); ++i) {
-      out[i].pos = in[i].attr[0];
-      for (int k = 0; k < 3; ++k) out[i].flat[k] = toShift(in[i].attr[2][k]);
-    }
-  }
   void shadeQuads(const QuadBatch& b, const ShadeContext& ctx) const override {
     const Vec4* u = ctx.uniforms;
     const float bias = u[8][0], step = u[8][1];
-    const int64_t dx = int32_t(b.flat[0]), dy = int32_t(b.flat[1]), layer = int32_t(b.flat[2]);
     for (size_t q = 0; q < b.count; ++q) {
       const Quad& quad = b.quads[q];
       int64_t x[4], y[4], l[4];
-      for (int p = 0; p < 4; ++p) x[p] = quad.x + (p & 1) + dx, y[p] = quad.y + (p >> 1) + dy, l[p] = layer;
+      atlasTexels(b, quad, x, y, l);
       float color[4][4], depth[4][4];
       fetchQuad2DArray(ctx.units[0], x, y, l, color);
       fetchQuad2DArray(ctx.units[1], x, y, l, depth);

@@ -47,7 +47,7 @@ case "$case_name" in
   demo_runs_render_to_texture_atlas)
     "$tessera" demo -o demo --threads 2 --no-gl --no-thread-check --no-mta --no-tab --railway "$src/data/railway.glb" > stdout.json
     for f in report.json index.html rtta/five/index.html rtta/five/table.json rtta/five/rtta_0012.png rtta/five/atlas_l0_0012.png \
-             rtta/five_ghosted/rtta_0001.png rtta/railway/rtta_0006.png rtta/railway/atlas_l0_0006.png; do
+             rtta/five_ghosted/rtta_0001.png rtta/five_ghosted_ao/rtta_0001.png rtta/railway/rtta_0006.png rtta/railway/atlas_l0_0006.png; do
       [ -s "demo/$f" ] || fail "demo did not write $f"
     done
     [ "$(json_field demo/report.json "['render_to_texture_atlas']['railway']['object_count']")" = "33" ] || fail "railway is not 33 objects"

@@ -19,6 +19,7 @@
 #include "raster/cpu_backend.h"
 #include "raster/image_io.h"
 #include "raster/program.h"
+#include "tests/crosscheck/ao_two_step.h"
 #include "tests/gl/no_freedom_frame.h"
 #include "verify/judge.h"
 
@@ -98,6 +99,15 @@ TEST(Gl33Softpipe, AFrameInWhichTheOracleFindsNoFreedomIsReproducedExactlyAndJud
   EXPECT_EQ(at(2, 2), (std::vector<uint8_t>{255, 0, 0, 255}));
   EXPECT_EQ(at(29, 11), (std::vector<uint8_t>{0, 255, 0, 255}));
   EXPECT_EQ(at(21, 23), (std::vector<uint8_t>{50, 120, 170, 255}));
+}
+
+// ghosted-ao's two-step judgement (tests/crosscheck/ao_two_step.h) on a second, independent GL
+// implementation: softpipe must also compute atlas_sprite_ao's floats over its own capture.
+TEST(Gl33Softpipe, GhostedAoOverItsOwnCaptureDiffersFromTheOracleOnlyByOutputRounding) {
+  REQUIRE_SOFTPIPE();
+  static const verify::ExpectationSet e =
+      verify::loadExpectations(std::string(TESSERA_SOURCE_DIR) + "/tests/expectations/gl-deviations.json");
+  tessera::testing::judgeGhostedAoOnItsOwnCapture(gl(), "softpipe", &e);
 }
 
 TEST(Gl33Softpipe, ASecondBackendAskingForAnotherDriverIsAnErrorNamingBoth) {

@@ -148,7 +148,8 @@ TEST(MutationCatalogue, StateMutantsChangeOnlyTheSamplerFieldTheyAreAbout) {
 // floor(r + 1/2) put in different layers of different colours.
 TEST(Mutants, EachMutantOfTheFastSubsetIsKilledByTheSceneThatExercisesItAndTheUnmodifiedBackendIsClean) {
   std::vector<verify::MutantFrame> frames;
-  for (const char* s : {"provoking_vertex", "array_layers", "atlas_clip", "lod_levels", "blend", "depth_ties"})
+  for (const char* s :
+       {"provoking_vertex", "array_layers", "atlas_clip", "lod_levels", "blend", "depth_ties", "rtta_five_ao_post"})
     frames.push_back(frame(s));
   const std::vector<std::pair<std::string, std::string>> expected = {
       {"provoking_vertex_first", "provoking_vertex"},  // every triangle's three ids differ
@@ -159,6 +160,7 @@ TEST(Mutants, EachMutantOfTheFastSubsetIsKilledByTheSceneThatExercisesItAndTheUn
       {"mag_min_switch_0_5", "lod_levels"},            // lambda 0.25 under LINEAR_MIPMAP_LINEAR
       {"blend_subtract_swapped", "blend"},             // the SUBTRACT and REVERSE_SUBTRACT columns
       {"depth_strict_swapped", "depth_ties"},          // redraws tie exactly: LESS fails, LEQUAL passes
+      {"ao_crease_sign_flipped", "rtta_five_ao_post"}, // every convex box edge turns into an occluding crease
   };
   std::vector<const gl::Mutation*> mutations;
   for (const auto& [name, scene] : expected) {

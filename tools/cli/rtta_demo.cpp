@@ -37,6 +37,9 @@ RttaDemoResult runRttaDemo(const std::string& outDir, const std::string& railway
   run("five_ghosted", five);
   five.composite = "transparent";
   run("five_transparent", five);
+  five.composite = "ghosted-ao";  // the caliper, whose creases show the occlusion and the edges
+  five.important = {2};
+  run("five_ghosted_ao", five);
   RttaRenderArgs rw;
   rw.input = railwayPath;
   rw.frames = 12;
@@ -70,11 +73,12 @@ RttaDemoResult runRttaDemo(const std::string& outDir, const std::string& railway
       "<th>RTTA composite = STD, min %</th><th>capture = RTT %</th></tr>{}{}</table>"
       "<p>Every differing pixel lies where a captured triangle was cut by the capture's clip planes or a displaced vertex "
       "rounded to another sub-pixel, or where two objects tie in depth (docs/rtta.md); RTT composites equal STD.</p>"
-      "<p>five objects, frame 12: STD / RTTA composite / atlas layer 0 (red: B_atlas, yellow: interior), ghosted, transparent:"
-      "<br>{}{}{}{}{}</p><p>railway.glb, frame 6: STD / RTTA / atlas layer 0: {}{}{}</p>"
+      "<p>five objects, frame 12: STD / RTTA composite / atlas layer 0 (red: B_atlas, yellow: interior), ghosted, transparent, ghosted-ao (occlusion and edges on the caliper's own atlas "
+      "region):<br>{}{}{}{}{}{}</p><p>railway.glb, frame 6: STD / RTTA / atlas layer 0: {}{}{}</p>"
       "<p><a href='rtta/five/index.html'>five: every frame</a> · <a href='rtta/railway/index.html'>railway: every frame</a></p>",
       row("five"), row("railway"), img("rtta/five/std_0012.png"), img("rtta/five/rtta_0012.png"),
       img("rtta/five/atlas_l0_0012.png"), img("rtta/five_ghosted/rtta_0001.png"), img("rtta/five_transparent/rtta_0001.png"),
+      img("rtta/five_ghosted_ao/rtta_0001.png"),
       img("rtta/railway/std_0006.png"), img("rtta/railway/rtta_0006.png"), img("rtta/railway/atlas_l0_0006.png"));
   return out;
 }

@@ -43,5 +43,6 @@ void buildRttaFiveAtlas(CommandList& cl, int w, int h);
 void buildRttaFiveTransparent(CommandList& cl, int w, int h);
 void buildRttaFiveGhosted(CommandList& cl, int w, int h);
 void buildRttaFiveGhostedAo(CommandList& cl, int w, int h);
+void buildRttaFiveAoPost(CommandList& cl, int w, int h);
 
 }  // namespace tessera::scenes

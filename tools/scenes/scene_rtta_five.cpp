@@ -4,12 +4,16 @@
 // projection, packing, transforms), the record buffer, one capture pass by screen-space vertex
 // displacement (atlas_capture: colour, window depth, depth), and the composites of Fig. 3 with
 // atlas_sprite: depth sprites (A), transparent back to front (B), ghosted with the pad highlighted (C),
-// and ghosted with occlusion and edges on the caliper by atlas_sprite_ao (D).
+// and ghosted with occlusion and edges on the caliper by atlas_sprite_ao (D). rtta_five_ao_post is D's
+// post-process alone on exact inputs: the oracle's capture uploaded, every object drawn by
+// atlas_sprite_ao, so GL must compute the program's floats (docs/rtta.md, "ghosted-ao", step 2).
 // rtta_five_atlas ends on the capture target, so its atlas colour and depth layers are the presented
 // images. The atlas is twice the default side, so every object lands in layer 0: softpipe misroutes
 // fragments of layers >= 1 whose depth test fails into layer 0 (docs/softpipe-edge-flips.md §1), and
 // these scenes are cross-checked on softpipe too.
 #include "batching/input_batches.h"
+#include "raster/cpu_backend.h"
+#include "raster/image_io.h"
 #include "model/five_objects.h"
 #include "model/object_groups.h"
 #include "mta/camera.h"
@@ -77,5 +81,25 @@ void buildRttaFiveAtlas(CommandList& cl, int w, int h) { buildFive(cl, w, h, rtt
 void buildRttaFiveTransparent(CommandList& cl, int w, int h) { buildFive(cl, w, h, rtta::Composite::Transparent, false); }
 void buildRttaFiveGhosted(CommandList& cl, int w, int h) { buildFive(cl, w, h, rtta::Composite::Ghosted, false); }
 void buildRttaFiveGhostedAo(CommandList& cl, int w, int h) { buildFive(cl, w, h, rtta::Composite::GhostedAo, false); }
+
+void buildRttaFiveAoPost(CommandList& cl, int w, int h) {
+  // The oracle's own capture, rendered here and uploaded: every texel atlas_sprite_ao reads is exact.
+  const rtta::RttaFrame capture = recordFive(w, h, rtta::Composite::GhostedAo, true, nullptr);
+  CpuBackend b;
+  b.execute(capture.list, "rtta_five_ao_post capture");
+  rtta::AtlasImages atlas;
+  for (const PresentedImage& p : b.presented()) {
+    const TextureData& t = *b.texture(p.texture);
+    std::vector<uint8_t> rows = imagePixels(t, p.level, p.layer);  // top row first
+    const size_t rowBytes = size_t(t.desc.width) * texelBytes(t.desc.format);
+    std::vector<uint8_t> up(rows.size());
+    for (size_t r = 0; r < t.desc.height; ++r)
+      std::copy_n(rows.begin() + std::ptrdiff_t((t.desc.height - 1 - r) * rowBytes), rowBytes,
+                  up.begin() + std::ptrdiff_t(r * rowBytes));
+    (p.texture == capture.captureColor ? atlas.color : atlas.depth).push_back(std::move(up));
+  }
+  const std::vector<uint32_t> all{0, 1, 2, 3, 4};
+  cl = recordFive(w, h, rtta::Composite::GhostedAo, false, &atlas, &all).list;
+}
 
 }  // namespace tessera::scenes

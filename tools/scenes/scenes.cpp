@@ -37,6 +37,7 @@ const std::vector<Entry>& entries() {
       {{"rtta_five_transparent", "render-to-texture-atlas: the five objects composited translucent, back to front, no depth test (Fig. 3B)", 160, 160}, buildRttaFiveTransparent},
       {{"rtta_five_ghosted", "render-to-texture-atlas: ghosted view, the pad opaque and highlighted, the rest translucent (Fig. 3C)", 160, 160}, buildRttaFiveGhosted},
       {{"rtta_five_ghosted_ao", "render-to-texture-atlas: ghosted view with ambient occlusion and edges computed on the caliper's own atlas region (Fig. 3D; atlas_sprite_ao, not monotone: INPUT_INTERVAL)", 160, 160}, buildRttaFiveGhostedAo},
+      {{"rtta_five_ao_post", "render-to-texture-atlas: ghosted-ao's post-process alone, every object by atlas_sprite_ao over the oracle's own capture uploaded (exact texels: GL must compute the program's floats)", 160, 160}, buildRttaFiveAoPost},
   };
   return e;
 }
