@@ -6,6 +6,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <map>
 
@@ -102,6 +103,8 @@ struct CpuBackend::Impl {
   PipelineStats stats;
   std::vector<SetupSink> sinks;  // reused across draws
   tbb::enumerable_thread_specific<RastScratch> scratch;
+  StageTimes times;
+  uint64_t binTicks = 0;  // appendToScene runs on the calling thread
   // LOD probe: per (colour attachment 0, level), one map per layer.
   std::map<std::pair<const TextureData*, uint32_t>, std::vector<LodMap>> lodMaps;
 
@@ -156,6 +159,7 @@ struct CpuBackend::Impl {
     targetBound = true;
     scene.begin(resolveTarget(t));
     scene.provenance = options.provenance;
+    scene.timeStages = options.stageTimes;
     scene.lod = nullptr;
     if (options.lodProbe && !options.provenance && scene.target.color[0]) {
       const TextureData* c = scene.target.color[0];
@@ -299,12 +303,15 @@ struct CpuBackend::Impl {
     const size_t shadeCount = dense ? size_t(hi - lo) + 1 : size_t(n);
     std::vector<VertexIn> in(shadeCount);
     std::vector<VertexOut> out(shadeCount);
+    const bool timing = scene.timeStages;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, shadeCount, kVertexChunk), [&](const tbb::blocked_range<size_t>& r) {
+      const uint64_t t0 = timing ? stageClock() : 0;
       for (size_t i = r.begin(); i != r.end(); ++i) fetchVertex(dense ? lo + uint32_t(i) : idx[i], in[i]);
       std::span<const VertexIn> ins(in.data() + r.begin(), r.size());
       std::span<VertexOut> outs(out.data() + r.begin(), r.size());
       for (VertexOut& o : outs) std::memset(&o, 0, sizeof o);
       ds.program->shadeVertices(ins, outs, ds.ctx);
+      if (timing) scratch.local().ticks.t[kStageVertex] += stageClock() - t0;
     });
 
     SetupParams params;
@@ -314,6 +321,7 @@ struct CpuBackend::Impl {
     params.stateIndex = stateIndex;
     params.varyings = ds.varyings;
     params.provenance = options.provenance;
+    params.timeStages = timing;
     const bool layered = target.layer == kLayered;
     // Setup runs in parallel over fixed chunks of triangles, each chunk into its own sink; the sinks
     // are appended in chunk order, so the bins see the triangles in submission order whatever the
@@ -321,6 +329,7 @@ struct CpuBackend::Impl {
     const size_t chunks = (size_t(triCount) + kSetupChunk - 1) / kSetupChunk;
     if (sinks.size() < chunks) sinks.resize(chunks);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
+      const uint64_t setup0 = timing ? stageClock() : 0;
       for (size_t c = r.begin(); c != r.end(); ++c) {
         SetupSink& sink = sinks[c];
         sink.clear();
@@ -359,16 +368,39 @@ struct CpuBackend::Impl {
           }
         }
       }
+      if (timing) scratch.local().ticks.t[kStageSetup] += stageClock() - setup0;
     });
+    const uint64_t bin0 = timing ? stageClock() : 0;
     for (size_t c = 0; c < chunks; ++c) appendToScene(sinks[c], scene, stats);
+    if (timing) {
+      binTicks += stageClock() - bin0;
+      uint64_t clip = 0;
+      for (size_t c = 0; c < chunks; ++c) clip += sinks[c].clipTicks;
+      scratch.local().ticks.t[kStageClip] += clip;
+    }
   }
 
   bool executed = false;
+  // Runs the list; resource commands are timed apart (StageTimes::resourcesMs), after the flush that
+  // an upload forces, so the frame's time is the draws' and clears' whatever the list interleaves.
   void run(const CommandList& list) {
+    using Clock = std::chrono::steady_clock;
+    Clock::duration resources{};
     for (const Command& cmd : list.commands()) {
+      const bool resource = std::holds_alternative<CreateTexture>(cmd) || std::holds_alternative<UploadTexture>(cmd) ||
+                            std::holds_alternative<CreateBuffer>(cmd) || std::holds_alternative<UploadBuffer>(cmd) ||
+                            std::holds_alternative<CreateSampler>(cmd) || std::holds_alternative<CreateProgram>(cmd);
+      if (!resource) {
+        std::visit([&](const auto& c) { apply(list, c); }, cmd);
+        continue;
+      }
+      if (std::holds_alternative<UploadTexture>(cmd) || std::holds_alternative<UploadBuffer>(cmd)) flush();
+      const Clock::time_point t0 = Clock::now();
       std::visit([&](const auto& c) { apply(list, c); }, cmd);
+      resources += Clock::now() - t0;
     }
     flush();
+    times.resourcesMs = std::chrono::duration<double, std::milli>(resources).count();
   }
 
   void apply(const CommandList&, const CreateTexture& c) {
@@ -437,7 +469,10 @@ CpuBackend::CpuBackend(RenderOptions options) : impl_(std::make_unique<Impl>()) 
 CpuBackend::~CpuBackend() = default;
 
 void CpuBackend::execute(const CommandList& list, std::string_view frameName) {
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point start = Clock::now();
   validateOrThrow(list, frameName, impl_->options.limits);
+  const Clock::time_point validated = Clock::now();
   // A list is a whole frame that starts from GL's initial state (command_list.h): nothing of an earlier
   // execute() may leak into it, so a backend reused for a sequence of frames starts afresh each time.
   if (impl_->executed) {
@@ -448,7 +483,32 @@ void CpuBackend::execute(const CommandList& list, std::string_view frameName) {
   impl_->executed = true;
   const int threads = impl_->options.threads > 0 ? impl_->options.threads : tbb::this_task_arena::max_concurrency();
   tbb::task_arena arena(threads);
+  const uint64_t tick0 = stageClock();
   arena.execute([&] { impl_->run(list); });
+  const uint64_t ticks = stageClock() - tick0;
+  const Clock::time_point end = Clock::now();
+  StageTimes& st = impl_->times;
+  st.validateMs = std::chrono::duration<double, std::milli>(validated - start).count();
+  const double runMs = std::chrono::duration<double, std::milli>(end - validated).count();
+  st.frameMs = std::max(0.0, runMs - st.resourcesMs);
+  st.perStage = impl_->options.stageTimes;
+  if (st.perStage) {
+    // Ticks to milliseconds with the run's own wall time as the reference clock.
+    const double msPerTick = ticks > 0 ? runMs / double(ticks) : 0.0;
+    StageTicks sum;
+    for (const RastScratch& s : impl_->scratch)
+      for (int k = 0; k < kStageCount; ++k) sum.t[k] += s.ticks.t[k];
+    const auto ms = [&](uint64_t t) { return double(t) * msPerTick; };
+    st.vertexMs = ms(sum.t[kStageVertex]);
+    st.clipMs = ms(sum.t[kStageClip]);
+    st.setupMs = ms(sum.t[kStageSetup] - std::min(sum.t[kStageSetup], sum.t[kStageClip]));
+    st.binMs = ms(impl_->binTicks);
+    const uint64_t inTile = sum.t[kStageShade] + sum.t[kStageFragops];
+    st.rastMs = ms(sum.t[kStageTile] - std::min(sum.t[kStageTile], inTile));
+    st.shadeMs = ms(sum.t[kStageShade] - std::min(sum.t[kStageShade], sum.t[kStageSample]));
+    st.sampleMs = ms(sum.t[kStageSample]);
+    st.fragopsMs = ms(sum.t[kStageFragops]);
+  }
 }
 
 const TextureData* CpuBackend::texture(ResourceId id) const {
@@ -473,6 +533,7 @@ std::vector<PresentedImage> CpuBackend::presented() const {
 }
 
 const PipelineStats& CpuBackend::stats() const { return impl_->stats; }
+const StageTimes& CpuBackend::stageTimes() const { return impl_->times; }
 
 const LodMap* CpuBackend::lodMap(const PresentedImage& p) const {
   if (p.texture >= impl_->textures.size() || !impl_->textures[p.texture]) return nullptr;

@@ -18,6 +18,7 @@
 #include "raster/command_list.h"
 #include "raster/lod_probe.h"
 #include "raster/pipeline.h"
+#include "raster/stage_times.h"
 #include "raster/texture.h"
 
 namespace tessera {
@@ -33,6 +34,9 @@ struct RenderOptions {
   // stored there (raster/lod_probe.h; lodMap()). Slower (one quad per program call) but the images,
   // counters and every other output are the same bytes. Ignored in provenance mode.
   bool lodProbe = false;
+  // Measure CPU time per pipeline stage (stageTimes()). Costs a few cycle-counter reads per program
+  // batch and clipped triangle; every output is the same bytes.
+  bool stageTimes = false;
 };
 
 // One presented image: attachment `attachment` of the final target at (level, layer).
@@ -56,6 +60,9 @@ class CpuBackend {
   const TextureData* texture(ResourceId id) const;
   std::vector<PresentedImage> presented() const;
   const detail::PipelineStats& stats() const;
+  // Where the last execute() spent its time (stage_times.h). Wall times always; per-stage CPU times
+  // with RenderOptions::stageTimes.
+  const StageTimes& stageTimes() const;
   // With RenderOptions::lodProbe: the LOD map of presented image `p` (its texture, level and layer);
   // nullptr without the probe or if nothing was rendered to it.
   const LodMap* lodMap(const PresentedImage& p) const;

@@ -105,6 +105,7 @@ struct Scene {
   std::vector<ClearCmd> clears;
   int32_t tilesX = 0, tilesY = 0;
   std::vector<std::vector<TileCmd>> bins;
+  bool timeStages = false;  // RenderOptions::stageTimes: stages add their ticks to RastScratch::ticks
   // LOD probe (lod_probe.h): the maps of the target's colour attachment 0, one per layer, or nullptr.
   std::vector<LodMap>* lod = nullptr;
 

@@ -180,7 +180,10 @@ class TriangleRasterizer {
     QuadBatch batch{s_.quads.data(), s_.outs.data(), count_, {}, t_.primitiveId, t_.layer, t_.frontFacing};
     std::memcpy(batch.flat, t_.flat, sizeof batch.flat);
     if (scene_.lod) s_.lodLog.count = 0;
+    const bool timing = scene_.timeStages;
+    const uint64_t shade0 = timing ? stageClock() : 0;
     ds_.program->shadeQuads(batch, ds_.ctx);
+    const uint64_t shade1 = timing ? stageClock() : 0;
     const TargetView& tv = scene_.target;
     const bool depthTest = ds_.depth.test && tv.depth;
     const bool depthWrite = depthTest && ds_.depth.write;
@@ -215,6 +218,10 @@ class TriangleRasterizer {
         ++stats_.pixels_written;
       }
       if (scene_.lod) recordLod(q, keep);
+    }
+    if (timing) {
+      s_.ticks.t[kStageShade] += shade1 - shade0;
+      s_.ticks.t[kStageFragops] += stageClock() - shade1;
     }
     count_ = 0;
   }
@@ -254,6 +261,8 @@ void rasterizeTile(const Scene& scene, size_t tileIndex, RastScratch& scratch, P
   const auto& bin = scene.bins[tileIndex];
   if (bin.empty()) return;
   if (scene.lod) setLodQuadLog(&scratch.lodLog);
+  const uint64_t tile0 = scene.timeStages ? stageClock() : 0;
+  if (scene.timeStages) setSampleTicks(&scratch.ticks.t[kStageSample]);
   ++stats.tiles_rasterized;
   const int32_t tx = int32_t(tileIndex % size_t(scene.tilesX)), ty = int32_t(tileIndex / size_t(scene.tilesX));
   const TileRect tile{tx * kTileSize, ty * kTileSize, std::min((tx + 1) * kTileSize, scene.target.width) - 1,
@@ -281,6 +290,10 @@ void rasterizeTile(const Scene& scene, size_t tileIndex, RastScratch& scratch, P
     }
   }
   if (scene.lod) setLodQuadLog(nullptr);  // vertex stages on this thread must not append to it
+  if (scene.timeStages) {
+    setSampleTicks(nullptr);
+    scratch.ticks.t[kStageTile] += stageClock() - tile0;
+  }
 }
 
 }  // namespace tessera::detail

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "raster/pipeline.h"
+#include "raster/stage_times.h"
 
 namespace tessera::detail {
 
@@ -24,6 +25,7 @@ struct RastScratch {
   std::vector<QuadOut> outs = std::vector<QuadOut>(kBatch);
   std::vector<uint8_t> live = std::vector<uint8_t>(kBatch);  // covered and depth-passed pixels
   LodQuadLog lodLog;  // LOD probe: the lookups of the quad being shaded (Scene::lod)
+  StageTicks ticks;   // Scene::timeStages: this thread's time per stage (stage_times.h)
 };
 
 void rasterizeTile(const Scene& scene, size_t tileIndex, RastScratch& scratch, PipelineStats& stats);

@@ -21,6 +21,7 @@
 #include "raster/lod_probe.h"
 #include "raster/provenance.h"
 #include "raster/sample_detail.h"
+#include "raster/stage_times.h"
 
 namespace tessera {
 
@@ -504,9 +505,28 @@ inline bool intervalMode(const TexUnit& u) {
   return pv.active && pv.bound != SampleBound::Value && isComplete(u.tex, u.sampler.state);
 }
 
+// Stage times (raster/stage_times.h): the calling thread's texture-lookup tick counter, or nullptr.
+constinit thread_local uint64_t* t_sampleTicks = nullptr;
+
+// Adds the lookup's ticks to the thread's counter when stage times are on; one TLS load otherwise.
+class SampleTimer {
+ public:
+  SampleTimer() : acc_(t_sampleTicks), t0_(acc_ ? detail::stageClock() : 0) {}
+  ~SampleTimer() {
+    if (acc_) *acc_ += detail::stageClock() - t0_;
+  }
+  SampleTimer(const SampleTimer&) = delete;
+  SampleTimer& operator=(const SampleTimer&) = delete;
+
+ private:
+  uint64_t* acc_;
+  uint64_t t0_;
+};
+
 }  // namespace
 
 void setLodQuadLog(LodQuadLog* log) { t_lodLog = log; }
+void detail::setSampleTicks(uint64_t* ticks) { t_sampleTicks = ticks; }
 
 void sampleAtLambda(const TexUnit& u, float s, float t, uint32_t layer, int32_t lambda8, float out[4]) {
   const Plan p = makePlan(u, lambda8);
@@ -516,6 +536,7 @@ void sampleAtLambda(const TexUnit& u, float s, float t, uint32_t layer, int32_t 
 }
 
 void sampleQuad2D(const TexUnit& u, const float s[4], const float t[4], float bias, float out[4][4]) {
+  const SampleTimer timer;
   if (intervalMode(u)) return sampleQuadInterval(u, s, t, nullptr, bias, nullptr, out);
   static constexpr uint32_t kLayer0[4] = {0, 0, 0, 0};
   sampleQuadImpl(u, s, t, kLayer0, bias, out);
@@ -523,6 +544,7 @@ void sampleQuad2D(const TexUnit& u, const float s[4], const float t[4], float bi
 
 void sampleQuad2DArray(const TexUnit& u, const float s[4], const float t[4], const float r[4], float bias,
                        float out[4][4]) {
+  const SampleTimer timer;
   if (intervalMode(u)) return sampleQuadInterval(u, s, t, r, bias, nullptr, out);
   const uint32_t layers = u.tex != nullptr ? u.tex->desc.layers : 1u;
   const uint32_t l[4] = {selectLayer(r[0], layers), selectLayer(r[1], layers), selectLayer(r[2], layers),
@@ -532,6 +554,7 @@ void sampleQuad2DArray(const TexUnit& u, const float s[4], const float t[4], con
 
 void sampleGrad2DArray(const TexUnit& u, const float s[4], const float t[4], const float r[4], float dsdx, float dtdx,
                        float dsdy, float dtdy, float out[4][4]) {
+  const SampleTimer timer;
   if (!isComplete(u.tex, u.sampler.state)) {
     for (int i = 0; i < 4; ++i) writeIncomplete(out[i]);
     if (LodQuadLog* log = t_lodLog) probeLookup(*log, u, 0.0, 0.0, 0.0, 0.0, 0, 0, true);
@@ -593,6 +616,7 @@ const uint8_t* fetchBase(const TextureData& tex, uint64_t& n) {
 }  // namespace
 
 void fetchBuffer(const TexUnit& u, int64_t index, float out[4]) {
+  const SampleTimer timer;
   if (u.tex == nullptr) {  // no texture: incomplete (GL 4.6 §11.1.3.5)
     writeIncomplete(out);
     return;
@@ -624,6 +648,7 @@ void fetchBuffer(const TexUnit& u, int64_t index, float out[4]) {
 }
 
 uint32_t fetchBufferUint(const TexUnit& u, int64_t index) {
+  const SampleTimer timer;
   // Exact integer texelFetch for R32UI; other formats (not readable through a usampler) return 0,
   // and so do out-of-range indices and a missing texture.
   if (u.tex == nullptr || !isInteger(u.tex->desc.format)) return 0;

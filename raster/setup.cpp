@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "raster/stage_times.h"
 #include "raster/tolerances.h"
 
 namespace tessera::detail {
@@ -228,7 +229,9 @@ void setupTriangle(const VertexOut (&v)[3], uint32_t primitiveId, uint32_t layer
   } else {
     ++stats.primitives_clipped;
     ClipVertex poly[kMaxClipPolygon];
+    const uint64_t clip0 = params.timeStages ? stageClock() : 0;
     const int n = clipTriangle(v, params.raster.clipMask, params.varyings, poly);
+    if (params.timeStages) sink.clipTicks += stageClock() - clip0;
     WindowVertex w[kMaxClipPolygon];
     for (int i = 0; i < n; ++i)
       if (!(poly[i].pos[3] > 0.0)) {

@@ -20,6 +20,7 @@ struct SetupParams {
   uint32_t stateIndex = 0; // Scene::states index of the draw
   int varyings = 0;
   bool provenance = false;  // bin with bounding boxes one pixel wider (near-miss pixels can be ties)
+  bool timeStages = false;  // add polygon clipping's ticks to SetupSink::clipTicks (stage_times.h)
 };
 
 // Where setup puts its output: the set-up triangles in order and, per triangle, the tiles it must
@@ -31,11 +32,13 @@ struct SetupSink {
   std::vector<uint32_t> tiles;     // tile indices, triangle after triangle
   std::vector<uint32_t> tileEnd;   // per triangle: end of its run in `tiles`
   PipelineStats stats;
+  uint64_t clipTicks = 0;  // SetupParams::timeStages
   void clear() {
     tris.clear();
     tiles.clear();
     tileEnd.clear();
     stats = {};
+    clipTicks = 0;
   }
 };
 
