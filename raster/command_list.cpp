@@ -27,12 +27,6 @@ std::string_view commandName(size_t index) {
   return index < std::size(kNames) ? kNames[index] : std::string_view("?");
 }
 
-uint32_t levelWidth(const TextureDesc& d, uint32_t level) {
-  return level >= 32 ? 1u : std::max<uint32_t>(1u, d.width >> level);
-}
-uint32_t levelHeight(const TextureDesc& d, uint32_t level) {
-  return level >= 32 ? 1u : std::max<uint32_t>(1u, d.height >> level);
-}
 uint64_t levelBytes(const TextureDesc& d, uint32_t level) {
   return uint64_t(levelWidth(d, level)) * levelHeight(d, level) * texelBytes(d.format);
 }

@@ -166,8 +166,15 @@ class CommandList {
 
 // Bytes of level `level` of one layer of a 2D / array texture (tightly packed).
 uint64_t levelBytes(const TextureDesc& d, uint32_t level);
-uint32_t levelWidth(const TextureDesc& d, uint32_t level);
-uint32_t levelHeight(const TextureDesc& d, uint32_t level);
+// max(1, size >> level); inline because texel addressing calls them per pixel.
+inline uint32_t levelWidth(const TextureDesc& d, uint32_t level) {
+  const uint32_t w = level >= 32 ? 1u : d.width >> level;
+  return w > 0 ? w : 1u;
+}
+inline uint32_t levelHeight(const TextureDesc& d, uint32_t level) {
+  const uint32_t h = level >= 32 ? 1u : d.height >> level;
+  return h > 0 ? h : 1u;
+}
 // Number of levels of a full chain for w x h: floor(log2(max(w, h))) + 1.
 uint32_t fullMipCount(uint32_t w, uint32_t h);
 

@@ -22,12 +22,6 @@ bool depthPasses(CompareFunc f, float incoming, float stored) {
   }
 }
 
-uint8_t toUnorm8(double c) {
-  if (!(c > 0.0)) return 0;  // also NaN
-  if (c >= 1.0) return 255;
-  return uint8_t(roundHalfEven(c * 255.0));
-}
-
 namespace {
 
 inline double clamp01(double v) { return v > 0.0 ? (v < 1.0 ? v : 1.0) : 0.0; }  // NaN -> 0

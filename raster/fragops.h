@@ -12,6 +12,7 @@
 
 #include <cstdint>
 
+#include "raster/setup.h"
 #include "raster/types.h"
 
 namespace tessera::detail {
@@ -23,7 +24,12 @@ bool depthPasses(CompareFunc f, float incoming, float stored);
 inline float clampFragDepth(float z) { return z > 0.0f ? (z < 1.0f ? z : 1.0f) : 0.0f; }
 
 // NaN-safe unorm8 conversion: clamp to [0, 1] (NaN -> 0), then round half to even of c * 255.
-uint8_t toUnorm8(double c);
+// Inline: it runs per pixel and channel.
+inline uint8_t toUnorm8(double c) {
+  if (!(c > 0.0)) return 0;  // also NaN
+  if (c >= 1.0) return 255;
+  return uint8_t(roundHalfEven(c * 255.0));
+}
 
 // Blends `src` (the program's output) with `dst` under `b`; `unorm` selects the fixed-point rules.
 // Returns the result in double, before conversion.

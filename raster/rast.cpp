@@ -97,7 +97,11 @@ class TriangleRasterizer {
  public:
   TriangleRasterizer(const Scene& scene, const TriSetup& t, RastScratch& s, PipelineStats& stats)
       : scene_(scene), t_(t), ds_(*scene.states[t.drawState]), s_(s), stats_(stats),
-        lateDepth_(ds_.program->writesDepth()) {}
+        lateDepth_(ds_.program->writesDepth()) {
+    const TargetView& tv = scene.target;
+    depth_ = Plane::of(tv.depth, tv.level, t.layer);
+    for (int a = 0; a < kMaxColorAttachments; ++a) color_[a] = Plane::of(tv.color[size_t(a)], tv.level, t.layer);
+  }
 
   void run(const TileRect& tile) {
     const int32_t x0 = std::max(t_.minX, tile.x0), x1 = std::min(t_.maxX, tile.x1);
@@ -110,6 +114,26 @@ class TriangleRasterizer {
 
  private:
   static constexpr int64_t kStep = kSubpixelOne;  // one pixel in sub-pixels
+
+  // One (level, layer) image of an attachment, addressed like TextureData::texel() without
+  // recomputing the level's size per pixel.
+  struct Plane {
+    uint8_t* base = nullptr;
+    uint64_t rowBytes = 0;
+    uint32_t bpp = 0;
+    Format format = Format::RGBA8;
+    static Plane of(TextureData* tex, uint32_t level, uint32_t layer) {
+      if (!tex) return {};
+      const uint32_t bpp = texelBytes(tex->desc.format);
+      return {tex->texel(level, layer, 0, 0), uint64_t(levelWidth(tex->desc, level)) * bpp, bpp, tex->desc.format};
+    }
+    uint8_t* at(int32_t x, int32_t y) const { return base + uint64_t(uint32_t(y)) * rowBytes + uint64_t(uint32_t(x)) * bpp; }
+    float depth(int32_t x, int32_t y) const {
+      float z;
+      std::memcpy(&z, at(x, y), sizeof z);
+      return z;
+    }
+  };
 
   int64_t edgeAt(int i, int32_t x, int32_t y) const {
     return t_.a[i] * ((int64_t(x) << kSubpixelBits) + kSubpixelHalf) +
@@ -129,22 +153,29 @@ class TriangleRasterizer {
       if (e0[i] - t_.bias[i] + lo < 0) full = false;
     }
     const bool inside = bx >= x0 && by >= y0 && bx + kBlockSize - 1 <= x1 && by + kBlockSize - 1 <= y1;
+    // Edge values step by exact integer increments: one pixel right adds a * kStep, one up b * kStep.
+    int64_t dx[3], dy[3], eRow[3];
+    for (int i = 0; i < 3; ++i) dx[i] = t_.a[i] * kStep, dy[i] = t_.b[i] * kStep, eRow[i] = e0[i];
     for (int32_t qy = by; qy < by + kBlockSize; qy += 2) {
+      int64_t eq[3] = {eRow[0], eRow[1], eRow[2]};
+      for (int i = 0; i < 3; ++i) eRow[i] += 2 * dy[i];
       if (qy + 1 < y0 || qy > y1) continue;
       for (int32_t qx = bx; qx < bx + kBlockSize; qx += 2) {
-        if (qx + 1 < x0 || qx > x1) continue;
         int64_t e[4][3];
-        uint8_t cov = 0;
-        for (int p = 0; p < 4; ++p) {
-          const int32_t px = qx + (p & 1), py = qy + (p >> 1);
-          bool in = true;
-          for (int i = 0; i < 3; ++i) {
-            e[p][i] = e0[i] + t_.a[i] * (int64_t(px - bx) * kStep) + t_.b[i] * (int64_t(py - by) * kStep);
-            if (!full) in = in && e[p][i] - t_.bias[i] >= 0;
-          }
-          if (!inside) in = in && px >= x0 && px <= x1 && py >= y0 && py <= y1;
-          cov |= uint8_t(in) << p;
+        for (int i = 0; i < 3; ++i) {
+          e[0][i] = eq[i], e[1][i] = eq[i] + dx[i], e[2][i] = eq[i] + dy[i], e[3][i] = eq[i] + dx[i] + dy[i];
+          eq[i] += 2 * dx[i];
         }
+        if (qx + 1 < x0 || qx > x1) continue;
+        uint8_t cov = 0xf;
+        if (!full)
+          for (int p = 0; p < 4; ++p)
+            if (e[p][0] < t_.bias[0] || e[p][1] < t_.bias[1] || e[p][2] < t_.bias[2]) cov &= uint8_t(~(1u << p));
+        if (!inside)
+          for (int p = 0; p < 4; ++p) {
+            const int32_t px = qx + (p & 1), py = qy + (p >> 1);
+            if (px < x0 || px > x1 || py < y0 || py > y1) cov &= uint8_t(~(1u << p));
+          }
         if (cov) quad(qx, qy, cov, e);
       }
     }
@@ -155,18 +186,20 @@ class TriangleRasterizer {
     Quad& q = s_.quads[n];
     q.x = qx, q.y = qy, q.coverage = cov;
     uint8_t live = cov;
-    // Quad::z is gl_FragCoord.z and the value the depth test compares (the same float).
-    for (int p = 0; p < 4; ++p) q.z[p] = interpolatePixel(t_, ds_.varyings, e[p], q.var[p]);
+    // Quad::z is gl_FragCoord.z and the value the depth test compares (the same float). The varyings
+    // wait until the early depth test has kept a pixel.
+    interpolateQuadDepth(t_, e, q.z);
     const TargetView& tv = scene_.target;
     if (ds_.depth.test && tv.depth && !lateDepth_) {
       for (int p = 0; p < 4; ++p) {
         if (!(live >> p & 1)) continue;
-        const float stored = loadDepth(*tv.depth, tv.level, t_.layer, qx + (p & 1), qy + (p >> 1));
+        const float stored = depth_.depth(qx + (p & 1), qy + (p >> 1));
         if (!depthPasses(ds_.depth.func, q.z[p], stored)) live &= uint8_t(~(1u << p));
       }
       stats_.fragments_depth_failed += uint64_t(std::popcount(uint32_t(cov & ~live)));
       if (!live) return;  // no pixel can change: skip shading (no side effects are lost)
     }
+    interpolateQuadVaryings(t_, ds_.varyings, e, q.var);
     s_.live[n] = live;
     s_.outs[n].discard = 0;
     // A program that writes depth and leaves a pixel alone keeps the interpolated depth (F11).
@@ -201,19 +234,25 @@ class TriangleRasterizer {
         const uint8_t before = keep;
         for (int p = 0; p < 4; ++p)
           if ((keep >> p & 1) &&
-              !depthPasses(ds_.depth.func, z[p], loadDepth(*tv.depth, tv.level, t_.layer, q.x + (p & 1), q.y + (p >> 1))))
+              !depthPasses(ds_.depth.func, z[p], depth_.depth(q.x + (p & 1), q.y + (p >> 1))))
             keep &= uint8_t(~(1u << p));
         stats_.fragments_depth_failed += uint64_t(std::popcount(uint32_t(before & ~keep)));
       }
       for (int p = 0; p < 4; ++p) {
         if (!(keep >> p & 1)) continue;
         const int32_t x = q.x + (p & 1), y = q.y + (p >> 1);
-        if (depthWrite) storeDepth(*tv.depth, tv.level, t_.layer, x, y, z[p]);
+        if (depthWrite) std::memcpy(depth_.at(x, y), &z[p], sizeof(float));
         for (int a = 0; a < ds_.colorOutputs; ++a) {
-          TextureData* c = tv.color[size_t(a)];
-          if (!c) continue;
-          writeFragment(c->desc.format, c->texel(tv.level, t_.layer, uint32_t(x), uint32_t(y)),
-                        s_.outs[n].color[a][p].u, ds_.blend);
+          const Plane& c = color_[a];
+          if (!c.base) continue;
+          uint8_t* texel = c.at(x, y);
+          if (c.format == Format::RGBA8 && !ds_.blend.enabled) {
+            // writeFragment's unblended RGBA8 case, inline: the common write.
+            const float* f = s_.outs[n].color[a][p].f;
+            for (int k = 0; k < 4; ++k) texel[k] = toUnorm8(f[k]);
+          } else {
+            writeFragment(c.format, texel, s_.outs[n].color[a][p].u, ds_.blend);
+          }
         }
         ++stats_.pixels_written;
       }
@@ -252,6 +291,8 @@ class TriangleRasterizer {
   RastScratch& s_;
   PipelineStats& stats_;
   const bool lateDepth_;  // the program writes gl_FragDepth: the depth test runs after shading (F11)
+  Plane depth_;
+  Plane color_[kMaxColorAttachments];
   size_t count_ = 0;
 };
 

@@ -39,17 +39,48 @@ struct TileRect {
 // and interval bookkeeping in the targets' Provenance images.
 void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const TileRect& tile, PipelineStats& stats);
 
-// Interpolates one pixel (GL 4.6 §14.6.1) from its exact edge values e[i] (opposite vertex i):
+// Interpolation of one pixel (GL 4.6 §14.6.1) from its exact edge values e[i] (opposite vertex i):
 // perspective-correct varyings b_i = (e_i / w_i) / sum, each rounded to float once, and depth without
-// perspective, z = sum(e_i z_i) / 2A. Shared by the fast and the provenance path so their values
-// are the same bytes by construction (helper pixels extrapolate the same way).
-inline float interpolatePixel(const TriSetup& t, int varyings, const int64_t (&e)[3], float* var) {
+// perspective, z = sum(e_i z_i) / 2A. These three steps are the only place the arithmetic is spelled;
+// the per-pixel form (interpolatePixel, used by the provenance path) and the quad form of the fast
+// path both call them, so their values are the same bytes by construction (helper pixels
+// extrapolate the same way).
+inline float pixelDepth(const TriSetup& t, const int64_t (&e)[3]) {
   const double ed[3] = {double(e[0]), double(e[1]), double(e[2])};
-  const double w0 = ed[0] * t.invW[0], w1 = ed[1] * t.invW[1], w2 = ed[2] * t.invW[2];
-  const double sum = w0 + w1 + w2;
-  const double b0 = w0 / sum, b1 = w1 / sum, b2 = w2 / sum;
-  for (int k = 0; k < varyings; ++k) var[k] = float(b0 * t.var[0][k] + b1 * t.var[1][k] + b2 * t.var[2][k]);
   return float((ed[0] * t.z[0] + ed[1] * t.z[1] + ed[2] * t.z[2]) / double(t.area2));
+}
+
+inline void pixelBarycentrics(const TriSetup& t, const int64_t (&e)[3], double (&b)[3]) {
+  const double w0 = double(e[0]) * t.invW[0], w1 = double(e[1]) * t.invW[1], w2 = double(e[2]) * t.invW[2];
+  const double sum = w0 + w1 + w2;
+  b[0] = w0 / sum, b[1] = w1 / sum, b[2] = w2 / sum;
+}
+
+inline float pixelVarying(const TriSetup& t, const double (&b)[3], int k) {
+  return float(b[0] * t.var[0][k] + b[1] * t.var[1][k] + b[2] * t.var[2][k]);
+}
+
+inline float interpolatePixel(const TriSetup& t, int varyings, const int64_t (&e)[3], float* var) {
+  double b[3];
+  pixelBarycentrics(t, e, b);
+  for (int k = 0; k < varyings; ++k) var[k] = pixelVarying(t, b, k);
+  return pixelDepth(t, e);
+}
+
+// The quad form, split so the early depth test runs before the varyings are computed (a quad that
+// fails depth entirely never pays for them). The loops run over the four pixels, so a compiler may
+// put them in SIMD lanes; lane-wise IEEE operations give the scalar bits (no reassociation or
+// contraction: -ffp-contract=off, no -ffast-math). tests/raster/test_interpolate_quad.cpp compares.
+inline void interpolateQuadDepth(const TriSetup& t, const int64_t (&e)[4][3], float z[4]) {
+  for (int p = 0; p < 4; ++p) z[p] = pixelDepth(t, e[p]);
+}
+
+inline void interpolateQuadVaryings(const TriSetup& t, int varyings, const int64_t (&e)[4][3],
+                                    float (*var)[kMaxVaryings]) {
+  double b[4][3];
+  for (int p = 0; p < 4; ++p) pixelBarycentrics(t, e[p], b[p]);
+  for (int k = 0; k < varyings; ++k)
+    for (int p = 0; p < 4; ++p) var[p][k] = pixelVarying(t, b[p], k);
 }
 
 inline float loadDepth(const TextureData& d, uint32_t level, uint32_t layer, int32_t x, int32_t y) {
