@@ -196,7 +196,7 @@ class TriangleRasterizer {
         const float stored = depth_.depth(qx + (p & 1), qy + (p >> 1));
         if (!depthPasses(ds_.depth.func, q.z[p], stored)) live &= uint8_t(~(1u << p));
       }
-      stats_.fragments_depth_failed += uint64_t(std::popcount(uint32_t(cov & ~live)));
+      stats_.fragments_depth_failed += quadPixels(uint32_t(cov & ~live));
       if (!live) return;  // no pixel can change: skip shading (no side effects are lost)
     }
     interpolateQuadVaryings(t_, ds_.varyings, e, q.var);
@@ -224,9 +224,9 @@ class TriangleRasterizer {
       const Quad& q = s_.quads[n];
       uint8_t keep = uint8_t(s_.live[n] & ~s_.outs[n].discard);
       stats_.quads_shaded += 1;
-      stats_.fragments_shaded += uint64_t(std::popcount(uint32_t(s_.live[n])));
-      stats_.helper_invocations += uint64_t(4 - std::popcount(uint32_t(s_.live[n])));
-      stats_.fragments_discarded += uint64_t(std::popcount(uint32_t(s_.live[n] & s_.outs[n].discard)));
+      stats_.fragments_shaded += quadPixels(uint32_t(s_.live[n]));
+      stats_.helper_invocations += 4 - quadPixels(uint32_t(s_.live[n]));
+      stats_.fragments_discarded += quadPixels(uint32_t(s_.live[n] & s_.outs[n].discard));
       // The fragment's depth: the program's gl_FragDepth, clamped (spec-choices F11), tested late.
       float z[4];
       for (int p = 0; p < 4; ++p) z[p] = lateDepth_ ? clampFragDepth(s_.outs[n].depth[p]) : q.z[p];
@@ -236,7 +236,7 @@ class TriangleRasterizer {
           if ((keep >> p & 1) &&
               !depthPasses(ds_.depth.func, z[p], depth_.depth(q.x + (p & 1), q.y + (p >> 1))))
             keep &= uint8_t(~(1u << p));
-        stats_.fragments_depth_failed += uint64_t(std::popcount(uint32_t(before & ~keep)));
+        stats_.fragments_depth_failed += quadPixels(uint32_t(before & ~keep));
       }
       for (int p = 0; p < 4; ++p) {
         if (!(keep >> p & 1)) continue;

@@ -83,6 +83,13 @@ inline void interpolateQuadVaryings(const TriSetup& t, int varyings, const int64
     for (int p = 0; p < 4; ++p) var[p][k] = pixelVarying(t, b[p], k);
 }
 
+// The number of pixels in a quad mask (bits 0-3). std::popcount is a library call on baseline
+// x86-64 (no POPCNT), and the counters take it several times per quad.
+inline uint64_t quadPixels(uint32_t mask) {
+  static constexpr uint8_t kCount[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
+  return kCount[mask & 0xf];
+}
+
 inline float loadDepth(const TextureData& d, uint32_t level, uint32_t layer, int32_t x, int32_t y) {
   float z;
   std::memcpy(&z, d.texel(level, layer, uint32_t(x), uint32_t(y)), sizeof z);

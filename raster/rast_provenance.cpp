@@ -700,15 +700,15 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
       if (lateDepth) {
         // Shaded whatever the test says: count as the fast path does (covered pixels, late test).
         const uint8_t kept = uint8_t(cov & ~outs[2].discard);
-        stats.fragments_depth_failed += uint64_t(std::popcount(uint32_t(kept & ~pass)));
+        stats.fragments_depth_failed += quadPixels(uint32_t(kept & ~pass));
         if (cov) {
           stats.quads_shaded += 1;
-          stats.fragments_shaded += uint64_t(std::popcount(uint32_t(cov)));
-          stats.helper_invocations += uint64_t(4 - std::popcount(uint32_t(cov)));
-          stats.fragments_discarded += uint64_t(std::popcount(uint32_t(cov & outs[2].discard)));
+          stats.fragments_shaded += quadPixels(uint32_t(cov));
+          stats.helper_invocations += 4 - quadPixels(uint32_t(cov));
+          stats.fragments_discarded += quadPixels(uint32_t(cov & outs[2].discard));
         }
       } else {
-        stats.fragments_depth_failed += uint64_t(std::popcount(uint32_t(cov & ~pass)));
+        stats.fragments_depth_failed += quadPixels(uint32_t(cov & ~pass));
       }
       if (!(valueWrite | ambiguous)) continue;
       if (!lateDepth) shade();
@@ -727,9 +727,9 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
 
       if (!lateDepth) {
         stats.quads_shaded += 1;
-        stats.fragments_shaded += uint64_t(std::popcount(uint32_t(valueWrite)));
-        stats.helper_invocations += uint64_t(4 - std::popcount(uint32_t(valueWrite)));
-        stats.fragments_discarded += uint64_t(std::popcount(uint32_t(valueWrite & outs[2].discard)));
+        stats.fragments_shaded += quadPixels(uint32_t(valueWrite));
+        stats.helper_invocations += 4 - quadPixels(uint32_t(valueWrite));
+        stats.fragments_discarded += quadPixels(uint32_t(valueWrite & outs[2].discard));
       }
       for (int p = 0; p < 4; ++p) {
         const bool keep = (valueWrite >> p & 1) && !(outs[2].discard >> p & 1);

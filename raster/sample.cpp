@@ -155,7 +155,9 @@ Plan makePlan(const TexUnit& u, int32_t lambda8, int32_t magSwitch8) {
     p.levelWeight[0] = kLevelWeightOne;
   }
 
+  // The border texel is read only through CLAMP_TO_BORDER (texelPtr); other plans skip making it.
   const Format fmt = tex.desc.format;
+  if (p.wrapS != Wrap::ClampToBorder && p.wrapT != Wrap::ClampToBorder) return p;
   if (isUnorm(fmt)) {
     for (int c = 0; c < channelCount(fmt); ++c) {
       const float b = s.borderColor[size_t(c)];
@@ -296,11 +298,23 @@ inline const uint8_t* texelPtr(const Plan& p, const uint8_t* layerBase, const Le
   return layerBase + (uint64_t(j) * uint32_t(L.w) + uint32_t(i)) * bpt;
 }
 
+// texelPtr for a filter that knows at compile time whether a wrap mode is CLAMP_TO_BORDER: without
+// one, wrapIndex never gives -1 and the border test is dropped.
+template <bool kBorder>
+inline const uint8_t* texelAt(const Plan& p, const uint8_t* layerBase, const LevelRef& L, int32_t i, int32_t j,
+                              uint32_t bpt) {
+  if constexpr (kBorder) {
+    return texelPtr(p, layerBase, L, i, j, bpt);
+  } else {
+    return layerBase + (uint64_t(uint32_t(j)) * uint32_t(L.w) + uint32_t(i)) * bpt;
+  }
+}
+
 // Adds one level's filtered value times `levelW` (total weight levelW * 2^16) to acc. Each level is
 // summed in locals first (a uint8_t texel pointer may alias anything, which would otherwise keep
 // acc[] in memory); float sums are ((t00 w00 + t10 w10) + t01 w01) + t11 w11 per level, then
 // level d1 + level d2, in this fixed order. Every float x integer-weight (<= 2^24) product is exact.
-template <Format F>
+template <Format F, bool kBorder>
 inline void accumulateLevel(const Plan& p, const LevelRef& L, float s, float t, uint32_t layer, uint32_t levelW,
                             Acc<F> acc[4]) {
   constexpr uint32_t bpt = texelBytes(F);
@@ -312,7 +326,7 @@ inline void accumulateLevel(const Plan& p, const LevelRef& L, float s, float t, 
   if (!p.linear) {
     const int32_t i = wrapIndex(p.wrapS, nearestIndex(u), L.w);
     const int32_t j = wrapIndex(p.wrapT, nearestIndex(v), L.h);
-    const uint8_t* tx = texelPtr(p, base, L, i, j, bpt);
+    const uint8_t* tx = texelAt<kBorder>(p, base, L, i, j, bpt);
     const Acc<F> w = Acc<F>(levelW * kWeightOne * kWeightOne);
     for (int c = 0; c < C; ++c) acc[c] += channel<F>(tx, c) * w;
     return;
@@ -323,10 +337,10 @@ inline void accumulateLevel(const Plan& p, const LevelRef& L, float s, float t, 
   int32_t wi0, wi1, wj0, wj1;
   wrapPair(p.wrapS, i0, L.w, wi0, wi1);
   wrapPair(p.wrapT, j0, L.h, wj0, wj1);
-  const uint8_t* t00 = texelPtr(p, base, L, wi0, wj0, bpt);
-  const uint8_t* t10 = texelPtr(p, base, L, wi1, wj0, bpt);
-  const uint8_t* t01 = texelPtr(p, base, L, wi0, wj1, bpt);
-  const uint8_t* t11 = texelPtr(p, base, L, wi1, wj1, bpt);
+  const uint8_t* t00 = texelAt<kBorder>(p, base, L, wi0, wj0, bpt);
+  const uint8_t* t10 = texelAt<kBorder>(p, base, L, wi1, wj0, bpt);
+  const uint8_t* t01 = texelAt<kBorder>(p, base, L, wi0, wj1, bpt);
+  const uint8_t* t11 = texelAt<kBorder>(p, base, L, wi1, wj1, bpt);
   const uint32_t na = kWeightOne - a, nb = kWeightOne - b;
   // tau = (1-a)(1-b) t00 + a(1-b) t10 + (1-a) b t01 + a b t11 (GL 4.6 §8.14.2; rr's term order).
   const Acc<F> w00 = Acc<F>(na * nb * levelW), w10 = Acc<F>(a * nb * levelW);
@@ -342,13 +356,13 @@ inline void accumulateLevel(const Plan& p, const LevelRef& L, float s, float t, 
 
 // One filtered lookup with a plan; expands to RGBA per GL 4.6 §15.2.1 Table 15.1
 // (R -> (r, 0, 0, 1), RG -> (r, g, 0, 1), depth without compare -> (d, 0, 0, 1)).
-template <Format F>
+template <Format F, bool kBorder>
 inline void samplePlanned(const Plan& p, float s, float t, uint32_t layer, float out[4]) {
   constexpr int C = Fmt<F>::kChannels;
   if (layer > p.lastLayer) layer = p.lastLayer;  // defensive: callers pass a selected layer
   Acc<F> acc[4] = {0, 0, 0, 0};
-  accumulateLevel<F>(p, p.lv[0], s, t, layer, p.levelWeight[0], acc);
-  if (p.levelCount == 2) accumulateLevel<F>(p, p.lv[1], s, t, layer, p.levelWeight[1], acc);
+  accumulateLevel<F, kBorder>(p, p.lv[0], s, t, layer, p.levelWeight[0], acc);
+  if (p.levelCount == 2) accumulateLevel<F, kBorder>(p, p.lv[1], s, t, layer, p.levelWeight[1], acc);
   for (int c = 0; c < C; ++c) {
     if constexpr (Fmt<F>::kUnorm) {
       out[c] = float(double(acc[c]) / kUnormDenominator);  // the one conversion to float
@@ -373,33 +387,36 @@ inline void samplePlannedUint(const Plan& p, float s, float t, uint32_t layer, f
   out[3] = 1.0f;
 }
 
+// n lookups of format F sharing one plan, with the border test compiled in only where a wrap mode
+// is CLAMP_TO_BORDER.
+template <Format F>
+inline void sampleEach(bool border, const Plan& p, int n, const float* s, const float* t, const uint32_t* layers,
+                       float (*out)[4]) {
+  if (border) {
+    for (int i = 0; i < n; ++i) samplePlanned<F, true>(p, s[i], t[i], layers[i], out[i]);
+  } else {
+    for (int i = 0; i < n; ++i) samplePlanned<F, false>(p, s[i], t[i], layers[i], out[i]);
+  }
+}
+
 }  // namespace
 
 namespace sample_detail {
 
-// n lookups sharing one plan; one format dispatch for all of them.
+// n lookups sharing one plan; one format dispatch and one border choice for all of them.
 void sampleN(const TexUnit& u, const Plan& p, int n, const float* s, const float* t, const uint32_t* layers,
              float (*out)[4]) {
   if (!p.complete) {
     for (int i = 0; i < n; ++i) writeIncomplete(out[i]);
     return;
   }
+  const bool border = p.wrapS == Wrap::ClampToBorder || p.wrapT == Wrap::ClampToBorder;
   switch (u.tex->desc.format) {
-    case Format::RGBA8:
-      for (int i = 0; i < n; ++i) samplePlanned<Format::RGBA8>(p, s[i], t[i], layers[i], out[i]);
-      break;
-    case Format::R8:
-      for (int i = 0; i < n; ++i) samplePlanned<Format::R8>(p, s[i], t[i], layers[i], out[i]);
-      break;
-    case Format::RG32F:
-      for (int i = 0; i < n; ++i) samplePlanned<Format::RG32F>(p, s[i], t[i], layers[i], out[i]);
-      break;
-    case Format::RGBA32F:
-      for (int i = 0; i < n; ++i) samplePlanned<Format::RGBA32F>(p, s[i], t[i], layers[i], out[i]);
-      break;
-    case Format::D32F:
-      for (int i = 0; i < n; ++i) samplePlanned<Format::D32F>(p, s[i], t[i], layers[i], out[i]);
-      break;
+    case Format::RGBA8: return sampleEach<Format::RGBA8>(border, p, n, s, t, layers, out);
+    case Format::R8: return sampleEach<Format::R8>(border, p, n, s, t, layers, out);
+    case Format::RG32F: return sampleEach<Format::RG32F>(border, p, n, s, t, layers, out);
+    case Format::RGBA32F: return sampleEach<Format::RGBA32F>(border, p, n, s, t, layers, out);
+    case Format::D32F: return sampleEach<Format::D32F>(border, p, n, s, t, layers, out);
     case Format::R32UI:
       for (int i = 0; i < n; ++i) samplePlannedUint(p, s[i], t[i], layers[i], out[i]);
       break;
