@@ -314,9 +314,17 @@ inline const uint8_t* texelAt(const Plan& p, const uint8_t* layerBase, const Lev
 // summed in locals first (a uint8_t texel pointer may alias anything, which would otherwise keep
 // acc[] in memory); float sums are ((t00 w00 + t10 w10) + t01 w01) + t11 w11 per level, then
 // level d1 + level d2, in this fixed order. Every float x integer-weight (<= 2^24) product is exact.
-template <Format F, bool kBorder>
+// The taps a lookup gave a non-zero weight, and whether any weight is fractional (not 0 or 1): what
+// sampleBlended needs, recorded by the filter itself so provenance mode does not redo the lookup.
+struct TapLog {
+  const uint8_t* taps[8];
+  int n = 0;
+  bool fractional = false;
+};
+
+template <Format F, bool kBorder, bool kLog = false>
 inline void accumulateLevel(const Plan& p, const LevelRef& L, float s, float t, uint32_t layer, uint32_t levelW,
-                            Acc<F> acc[4]) {
+                            Acc<F> acc[4], TapLog* log = nullptr) {
   constexpr uint32_t bpt = texelBytes(F);
   constexpr int C = Fmt<F>::kChannels;
   const uint8_t* base = L.data + layer * L.layerStride;
@@ -327,6 +335,7 @@ inline void accumulateLevel(const Plan& p, const LevelRef& L, float s, float t, 
     const int32_t i = wrapIndex(p.wrapS, nearestIndex(u), L.w);
     const int32_t j = wrapIndex(p.wrapT, nearestIndex(v), L.h);
     const uint8_t* tx = texelAt<kBorder>(p, base, L, i, j, bpt);
+    if constexpr (kLog) log->taps[log->n++] = tx;
     const Acc<F> w = Acc<F>(levelW * kWeightOne * kWeightOne);
     for (int c = 0; c < C; ++c) acc[c] += channel<F>(tx, c) * w;
     return;
@@ -341,6 +350,13 @@ inline void accumulateLevel(const Plan& p, const LevelRef& L, float s, float t, 
   const uint8_t* t10 = texelAt<kBorder>(p, base, L, wi1, wj0, bpt);
   const uint8_t* t01 = texelAt<kBorder>(p, base, L, wi0, wj1, bpt);
   const uint8_t* t11 = texelAt<kBorder>(p, base, L, wi1, wj1, bpt);
+  if constexpr (kLog) {
+    log->fractional = log->fractional || a != 0 || b != 0;
+    log->taps[log->n++] = t00;
+    if (a != 0) log->taps[log->n++] = t10;
+    if (b != 0) log->taps[log->n++] = t01;
+    if (a != 0 && b != 0) log->taps[log->n++] = t11;
+  }
   const uint32_t na = kWeightOne - a, nb = kWeightOne - b;
   // tau = (1-a)(1-b) t00 + a(1-b) t10 + (1-a) b t01 + a b t11 (GL 4.6 §8.14.2; rr's term order).
   const Acc<F> w00 = Acc<F>(na * nb * levelW), w10 = Acc<F>(a * nb * levelW);
@@ -356,13 +372,13 @@ inline void accumulateLevel(const Plan& p, const LevelRef& L, float s, float t, 
 
 // One filtered lookup with a plan; expands to RGBA per GL 4.6 §15.2.1 Table 15.1
 // (R -> (r, 0, 0, 1), RG -> (r, g, 0, 1), depth without compare -> (d, 0, 0, 1)).
-template <Format F, bool kBorder>
-inline void samplePlanned(const Plan& p, float s, float t, uint32_t layer, float out[4]) {
+template <Format F, bool kBorder, bool kLog = false>
+inline void samplePlanned(const Plan& p, float s, float t, uint32_t layer, float out[4], TapLog* log = nullptr) {
   constexpr int C = Fmt<F>::kChannels;
   if (layer > p.lastLayer) layer = p.lastLayer;  // defensive: callers pass a selected layer
   Acc<F> acc[4] = {0, 0, 0, 0};
-  accumulateLevel<F, kBorder>(p, p.lv[0], s, t, layer, p.levelWeight[0], acc);
-  if (p.levelCount == 2) accumulateLevel<F, kBorder>(p, p.lv[1], s, t, layer, p.levelWeight[1], acc);
+  accumulateLevel<F, kBorder, kLog>(p, p.lv[0], s, t, layer, p.levelWeight[0], acc, log);
+  if (p.levelCount == 2) accumulateLevel<F, kBorder, kLog>(p, p.lv[1], s, t, layer, p.levelWeight[1], acc, log);
   for (int c = 0; c < C; ++c) {
     if constexpr (Fmt<F>::kUnorm) {
       out[c] = float(double(acc[c]) / kUnormDenominator);  // the one conversion to float
@@ -426,42 +442,44 @@ void sampleN(const TexUnit& u, const Plan& p, int n, const float* s, const float
   }
 }
 
-uint32_t blendedChannels(const TexUnit& u, const Plan& p, float s, float t, uint32_t layer) {
-  const Format fmt = u.tex->desc.format;
-  if (!p.complete || !isUnorm(fmt)) return 0;
-  const uint32_t bpt = texelBytes(fmt);
-  if (layer > p.lastLayer) layer = p.lastLayer;
-  // The taps with a non-zero weight, and whether any weight is fractional (the same taps and weights
-  // as accumulateLevel's).
-  const uint8_t* taps[8];
-  int n = 0;
-  bool fractional = p.levelCount == 2;  // makePlan keeps a second level only with weight in (0, 1)
-  for (int l = 0; l < p.levelCount; ++l) {
-    const LevelRef& L = p.lv[l];
-    const uint8_t* base = L.data + layer * L.layerStride;
-    const float uu = s * L.fw, vv = t * L.fh;
-    if (!p.linear) {
-      const int32_t i = wrapIndex(p.wrapS, nearestIndex(uu), L.w), j = wrapIndex(p.wrapT, nearestIndex(vv), L.h);
-      taps[n++] = texelPtr(p, base, L, i, j, bpt);
-      continue;
-    }
-    const int64_t U = linearFixed(uu), V = linearFixed(vv);
-    const uint32_t a = uint32_t(U & 0xff), b = uint32_t(V & 0xff);
-    int32_t wi0, wi1, wj0, wj1;
-    wrapPair(p.wrapS, U >> 8, L.w, wi0, wi1);
-    wrapPair(p.wrapT, V >> 8, L.h, wj0, wj1);
-    fractional = fractional || a != 0 || b != 0;
-    taps[n++] = texelPtr(p, base, L, wi0, wj0, bpt);
-    if (a != 0) taps[n++] = texelPtr(p, base, L, wi1, wj0, bpt);
-    if (b != 0) taps[n++] = texelPtr(p, base, L, wi0, wj1, bpt);
-    if (a != 0 && b != 0) taps[n++] = texelPtr(p, base, L, wi1, wj1, bpt);
-  }
-  if (!fractional) return 0;
+namespace {
+
+// The channels (bit c) in which the logged taps differ, where some weight was fractional.
+inline uint32_t differingChannels(const TapLog& log, int channels) {
+  if (!log.fractional) return 0;
   uint32_t mask = 0;
-  for (int c = 0; c < channelCount(fmt); ++c)
-    for (int i = 1; i < n; ++i)
-      if (taps[i][c] != taps[0][c]) mask |= 1u << c;
+  for (int c = 0; c < channels; ++c)
+    for (int i = 1; i < log.n; ++i)
+      if (log.taps[i][c] != log.taps[0][c]) mask |= 1u << c;
   return mask;
+}
+
+template <Format F>
+uint32_t sampleLogged(const Plan& p, float s, float t, uint32_t layer, float out[4]) {
+  TapLog log;
+  log.fractional = p.levelCount == 2;  // makePlan keeps a second level only with weight in (0, 1)
+  if (p.wrapS == Wrap::ClampToBorder || p.wrapT == Wrap::ClampToBorder) {
+    samplePlanned<F, true, true>(p, s, t, layer, out, &log);
+  } else {
+    samplePlanned<F, false, true>(p, s, t, layer, out, &log);
+  }
+  return differingChannels(log, Fmt<F>::kChannels);
+}
+
+}  // namespace
+
+uint32_t sampleBlended(const TexUnit& u, const Plan& p, float s, float t, uint32_t layer, float out[4]) {
+  if (p.complete) {
+    switch (u.tex->desc.format) {
+      case Format::RGBA8: return sampleLogged<Format::RGBA8>(p, s, t, layer, out);
+      case Format::R8: return sampleLogged<Format::R8>(p, s, t, layer, out);
+      default: break;
+    }
+  }
+  float v[1][4];
+  sampleN(u, p, 1, &s, &t, &layer, v);
+  for (int c = 0; c < 4; ++c) out[c] = v[0][c];
+  return 0;
 }
 
 }  // namespace sample_detail

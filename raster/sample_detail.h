@@ -73,11 +73,12 @@ Plan makePlan(const TexUnit& u, int32_t lambda8, int32_t magSwitch8 = 0);
 void sampleN(const TexUnit& u, const Plan& p, int n, const float* s, const float* t, const uint32_t* layers,
              float (*out)[4]);
 
-// sample.cpp: the channels (bit c) in which the unorm lookup at (s, t, layer) with plan p gives weight
-// to texels of different values with a weight not in {0, 1}, i.e. where the filter's arithmetic can
-// round (FILTER_PRECISION, docs/crosscheck.md). 0 where every weight is 0 or 1, where the weighted
-// texels are equal, and for formats other than unorm.
-uint32_t blendedChannels(const TexUnit& u, const Plan& p, float s, float t, uint32_t layer);
+// sample.cpp: one lookup (out = the value sampleN gives) and the channels (bit c, the result) in which
+// its unorm filter gave weight to texels of different values with a weight not in {0, 1}, i.e. where
+// the filter's arithmetic can round (FILTER_PRECISION, docs/crosscheck.md). The mask is 0 where every
+// weight is 0 or 1, where the weighted texels are equal, and for formats other than unorm. One pass:
+// the filter records the taps it weighs. Provenance mode asks both of every alternative.
+uint32_t sampleBlended(const TexUnit& u, const Plan& p, float s, float t, uint32_t layer, float out[4]);
 
 // sample_lod.cpp: lambda' and lambda from lambda_base (8.8): GL 4.6 §8.14.1, eq. 8.6 - 8.8.
 int32_t finishLambda(int32_t base, const SamplerQ& s, float shaderBias);

@@ -10,7 +10,7 @@
 //   error, and half an 8-bit weight step (tolerance::kSamplePosPx, kInterpRel, kWeightTexel);
 // - array layer: r + 1/2 near an integer (tolerance::kLayer);
 // - unorm filtering precision: +-1 LSB on an alternative that blends differing texels with a weight not
-//   in {0, 1} (tolerance::kFilterUnorm, blendedChannels).
+//   in {0, 1} (tolerance::kFilterUnorm, the mask of sampleBlended).
 // Each alternative is looked up with the exact path's own plan and per-pixel filter (makePlan, sampleN).
 // The alternatives are grouped by their discrete choice (level plan incl. the c = 1/2 switch, layer,
 // NEAREST texel), giving each pixel's lookup a short list of candidate boxes rather than one hull
@@ -76,6 +76,21 @@ struct LookupSet {
 
 inline bool sameValue(const float a[4], const float b[4]) { return std::memcmp(a, b, 4 * sizeof(float)) == 0; }
 
+// Plans that sample identically: the same filter, wrap modes, layers, levels and level weights, and
+// border texel (fields compared one by one: a Plan's padding bytes are indeterminate).
+bool samePlan(const Plan& a, const Plan& b) {
+  if (a.complete != b.complete || a.linear != b.linear || a.wrapS != b.wrapS || a.wrapT != b.wrapT ||
+      a.lastLayer != b.lastLayer || a.levelCount != b.levelCount || std::memcmp(a.border, b.border, sizeof a.border) != 0)
+    return false;
+  for (int l = 0; l < a.levelCount; ++l) {
+    const LevelRef &x = a.lv[l], &y = b.lv[l];
+    if (x.data != y.data || x.layerStride != y.layerStride || x.w != y.w || x.h != y.h ||
+        a.levelWeight[l] != b.levelWeight[l])
+      return false;
+  }
+  return true;
+}
+
 // Candidate coordinates along one axis for one plan: both ends of the tolerance, plus every texel
 // centre inside it for LINEAR (where the piecewise-linear filter has its kinks).
 int coordCandidates(float x, double tol, const Plan& p, bool horizontal, float out[6]) {
@@ -95,7 +110,7 @@ int coordCandidates(float x, double tol, const Plan& p, bool horizontal, float o
 // One pass over the legal alternatives of one pixel's lookup, reading the image that
 // shadeProvenance().bound selects: the alternatives grouped by their discrete choice (GroupKey), each
 // group's box the hull of its alternatives, each alternative widened by the filter precision in the
-// channels where its own filter rounds (blendedChannels). Group 0 holds the oracle's lookup. `der` =
+// channels where its own filter rounds (sampleBlended's mask). Group 0 holds the oracle's lookup. `der` =
 // {dsdx, dtdx, dsdy, dtdy} per derivative choice (0: the oracle's, 1: the alternative), in normalized
 // coordinates.
 void intervalPass(const TexUnit& u, float s, float t, float r, bool array, const double der[2][4], int derCount,
@@ -153,12 +168,10 @@ void intervalPass(const TexUnit& u, float s, float t, float r, bool array, const
   const double tolT = (std::fabs(der[0][1]) + std::fabs(der[0][3])) * tolerance::kSamplePosPx +
                       std::fabs(double(t)) * tolerance::kInterpRel;
 
-  const bool unorm = isUnorm(d.format);
   const int channels = channelCount(d.format);
   // Adds one alternative to its group, widened by FILTER_PRECISION where its filter rounds.
-  auto addSample = [&](const Plan& p, uint32_t layer, int32_t a, int32_t b, float sc, float tc, const float v[4]) {
+  auto addSample = [&](const Plan& p, uint32_t layer, int32_t a, int32_t b, uint32_t blended, const float v[4]) {
     float l[4], h[4];
-    const uint32_t blended = unorm ? blendedChannels(u, p, sc, tc, layer) : 0u;
     for (int c = 0; c < 4; ++c) {
       l[c] = h[c] = v[c];
       if (c < channels && (blended >> c & 1)) {
@@ -184,9 +197,9 @@ void intervalPass(const TexUnit& u, float s, float t, float r, bool array, const
   float nominal[4];
   {
     const Plan p = makePlan(u, lamOracle);
-    sampleN(u, p, 1, &s, &t, &layerOracle, reinterpret_cast<float(*)[4]>(nominal));
+    const uint32_t blended = sampleBlended(u, p, s, t, layerOracle, nominal);
     // The nominal coordinates are the last alternative of each axis (index 2 of a NEAREST plan).
-    addSample(p, layerOracle, 2, 2, s, t, nominal);
+    addSample(p, layerOracle, 2, 2, blended, nominal);
     // A texture rendered in provenance mode is read through its lower or upper interval image
     // (sample.cpp); where that differs from its values, the texels' own freedoms reach this lookup.
     ShadeProvenance& sp = shadeProvenance();
@@ -206,11 +219,19 @@ void intervalPass(const TexUnit& u, float s, float t, float r, bool array, const
   const SamplerState& ss = u.sampler.state;
   const bool halfSwitch = ss.magFilter == Filter::Linear &&
                           (ss.minFilter == Filter::NearestMipmapNearest || ss.minFilter == Filter::NearestMipmapLinear);
+  // Lambda candidates often give the same plan (magnification, levels clamped to the last, repeated
+  // ends). A plan seen before adds nothing: its samples, groups and boxes are the same, and its
+  // classes too, because the oracle's plan comes first (lam[0], pi = 0), so an earlier copy of any
+  // plan already set every class a later copy could set.
+  Plan seen[2 * kMaxLam];
+  int nSeen = 0;
   for (int pi = 0; pi < 2 * nl; ++pi) {
     const int li = pi >> 1;
     const bool alt = pi & 1;
     if (alt && !(halfSwitch && lam[li] > 0 && lam[li] <= 128)) continue;
     const Plan p = makePlan(u, lam[li], alt ? 128 : 0);
+    if (std::any_of(seen, seen + nSeen, [&](const Plan& q) { return samePlan(p, q); })) continue;
+    seen[nSeen++] = p;
     const LevelRef& coarse = p.lv[p.levelCount - 1];
     const double qS = tolerance::kWeightTexel / coarse.w, qT = tolerance::kWeightTexel / coarse.h;
     float sc[7], tc[7];
@@ -221,10 +242,9 @@ void intervalPass(const TexUnit& u, float s, float t, float r, bool array, const
     for (uint32_t layer = layerLo; layer <= layerHi; ++layer)
       for (int a = 0; a < ns; ++a)
         for (int b = 0; b < nt; ++b) {
-          float v[1][4];
-          sampleN(u, p, 1, &sc[a], &tc[b], &layer, v);
-          addSample(p, layer, a, b, sc[a], tc[b], v[0]);
-          if (sameValue(v[0], nominal)) continue;
+          float v[4];
+          addSample(p, layer, a, b, sampleBlended(u, p, sc[a], tc[b], layer, v), v);
+          if (sameValue(v, nominal)) continue;
           // A class names the freedom that alone changes the value: the LOD with the nominal
           // coordinates and layer, or the coordinates with the oracle's LOD and layer. Combinations
           // only widen the interval.

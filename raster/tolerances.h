@@ -105,7 +105,7 @@ constexpr float kLayer = 1.0f / 65536.0f;  // 2^-16
 // weighted texels are accumulated without intermediate quantization (as a fixed-point sum with 8-bit
 // or finer weights) and the sum is rounded or truncated once to the texel precision: an error below
 // 1 LSB. (Applied per legal alternative and channel where that alternative weights differing texels
-// with a weight not in {0, 1}: sample_interval.cpp, blendedChannels.) docs/crosscheck.md, row FILTER_PRECISION.
+// with a weight not in {0, 1}: sample_interval.cpp, sampleBlended.) docs/crosscheck.md, row FILTER_PRECISION.
 constexpr double kFilterUnorm = 1.0 / 255.0;
 
 }  // namespace tessera::tolerance

@@ -5,8 +5,9 @@
 // last tile), as a GL benchmark times between its uploads and glFinish. What a frame costs around
 // that is reported per iteration as counters, so it is visible but not mixed in: backend
 // construction (construct_ms), validation (validate_ms) and the resource commands (resources_ms).
-// `--stages` (before the benchmark flags) also turns on per-stage CPU times (stage_*_ms counters,
-// raster/stage_times.h); they cost a few cycle-counter reads per program batch.
+// `--stages` also turns on per-stage CPU times (stage_*_ms counters, raster/stage_times.h); they
+// cost a few cycle-counter reads per program batch. `--provenance` renders in provenance mode, the
+// mode every cross-check runs (per-pixel intervals, three program runs per quad).
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -18,6 +19,7 @@
 using namespace tessera;
 
 static bool g_stages = false;
+static bool g_provenance = false;
 
 static void renderScene(benchmark::State& state, std::string_view name, int w, int h) {
   const CommandList list = scenes::build(name, w, h);
@@ -27,6 +29,7 @@ static void renderScene(benchmark::State& state, std::string_view name, int w, i
   for (auto _ : state) {
     RenderOptions o{int(state.range(0))};
     o.stageTimes = g_stages;
+    o.provenance = g_provenance;
     const auto t0 = std::chrono::steady_clock::now();
     CpuBackend b(o);
     constructMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -72,6 +75,8 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--stages") == 0) {
       g_stages = true;
+    } else if (std::strcmp(argv[i], "--provenance") == 0) {
+      g_provenance = true;
     } else {
       argv[n++] = argv[i];
     }
