@@ -14,6 +14,7 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <thread>
 #include <vector>
 
@@ -32,7 +33,7 @@ namespace {
 struct SuiteRunArgs {
   std::string suiteFile, backends = "cpu,gl", glDriver, fraction = "1/1", baseline, flakes, outDir;
   int jobs = 1;
-  bool quiet = false;
+  bool quiet = false, list = false;
 };
 
 int finish(const std::string& dir, const suite::RunInfo& run, const std::vector<suite::CaseResult>& results) {
@@ -44,6 +45,7 @@ int finish(const std::string& dir, const suite::RunInfo& run, const std::vector<
 }
 
 void runSuite(const SuiteRunArgs& a) {
+  if (!a.list && a.outDir.empty()) throw Error("suite run: -o DIR is required (or --list)");
   if (a.backends != "cpu" && a.backends != "cpu,gl")
     throw Error("--backends '" + a.backends + "': expected cpu,gl (every case) or cpu (leave out the cases that need GL)");
   const suite::Fraction fraction = suite::parseFraction(a.fraction);
@@ -51,6 +53,14 @@ void runSuite(const SuiteRunArgs& a) {
   lo.gl = a.backends == "cpu,gl";
   lo.glDriver = a.glDriver;
   const suite::Suite s = suite::loadSuite(a.suiteFile, lo);
+  if (a.list) {
+    // The shard's cases as they would run, without running them (and without -o).
+    nlohmann::json j = nlohmann::json::array();
+    for (const suite::SuiteCase& c : suite::selectFraction(s.cases, fraction))
+      j.push_back({{"index", c.index}, {"name", c.name}, {"kind", c.kind}, {"needs_gl", c.needsGl}, {"steps", c.steps}});
+    std::printf("%s\n", j.dump(2).c_str());
+    return;
+  }
   std::optional<suite::Baseline> baseline;
   std::optional<suite::FlakeList> flakes;
   if (!a.baseline.empty()) baseline = suite::loadBaseline(a.baseline);
@@ -127,8 +137,10 @@ void addSuiteCommands(CLI::App& app) {
       ->capture_default_str();
   run->add_option("--baseline", a->baseline, "Expected failures (docs/suite.md: the expectations file's layout)");
   run->add_option("--flakes", a->flakes, "Known flaky cases: one regular expression over whole case names per line");
-  run->add_option("-o,--output", a->outDir, "Output directory")->required();
+  auto* outOpt = run->add_option("-o,--output", a->outDir, "Output directory (required unless --list)");
   run->add_flag("--quiet", a->quiet, "No progress lines on stderr");
+  run->add_flag("--list", a->list, "Print the shard's cases (name, kind, command lines) as JSON and run nothing")
+      ->excludes(outOpt);
   run->callback([a] { runSuite(*a); });
 
   struct MergeArgs {

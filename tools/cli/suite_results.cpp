@@ -103,8 +103,8 @@ json keyFigures(const std::string& stdoutText) {
       {"/mismatches", "mismatches"},
       {"/explained", "explained"},
       {"/differing_pixels", "differing_pixels"},
-      {"/tests", "golden_tests"},
-      {"/passed", "golden_passed"},
+      {"/tests", "tests"},
+      {"/passed", "passed"},
       {"/killed_percent", "killed_percent"},
       {"/false_alarms", "false_alarms"}};
   for (const auto& [ptr, key] : kPaths) {

@@ -24,8 +24,8 @@ namespace {
 // The fields each kind accepts besides the common ones (name, kind, comment, timeout_seconds,
 // memory_limit, args).
 const std::vector<std::pair<std::string, std::set<std::string>>> kKinds = {
-    {"render", {"scene", "size"}},    {"replay", {"frame"}},  {"crosscheck", {"frame", "size", "gl_driver"}},
-    {"visibility", {"frame", "size"}}, {"compare", {"a", "b"}}, {"golden", {}},
+    {"render", {"scene", "size", "except"}}, {"replay", {"frame"}}, {"crosscheck", {"frame", "size", "gl_driver", "except"}},
+    {"visibility", {"frame", "size", "except"}}, {"compare", {"a", "b"}}, {"golden", {}},
     {"mutant", {"mutant", "scenes"}}, {"command", {"steps", "gl"}}};
 const std::set<std::string> kCommon = {"name", "kind", "comment", "timeout_seconds", "memory_limit", "args"};
 
@@ -66,12 +66,14 @@ std::string resolveFile(const std::string& p, const Where& w, const std::string&
 
 // What a "frame" or "scene" field stands for: (item name, argument) pairs.
 std::vector<std::pair<std::string, std::string>> expandFrames(const std::string& v, bool scenesOnly, const Where& w,
-                                                              const std::string& field) {
+                                                              const std::string& field, const std::set<std::string>& except) {
   std::vector<std::pair<std::string, std::string>> out;
   if (v == "*") {
-    for (const scenes::SceneInfo& s : scenes::all()) out.emplace_back(std::string(s.name), std::string(s.name));
+    for (const scenes::SceneInfo& s : scenes::all())
+      if (!except.count(std::string(s.name))) out.emplace_back(std::string(s.name), std::string(s.name));
     return out;
   }
+  if (!except.empty()) w.fail("except", "only a \"*\" over every scene takes exceptions");
   if (scenes::find(v)) return {{v, v}};
   if (scenesOnly) w.fail(field, "'" + v + "' is no built-in scene (`tessera scenes` lists them) and not \"*\"");
   if (hasGlobChars(v)) {
@@ -211,6 +213,13 @@ Suite loadSuite(const std::string& path, const LoadOptions& options) {
     const std::vector<std::string> extra = c.contains("args") ? stringList(c["args"], w, "args") : std::vector<std::string>{};
     if (kind == "command" && !extra.empty()) w.fail("args", "a command case gives its arguments in 'steps'");
     const std::string size = c.contains("size") ? stringField(c, "size", w, true) : "";
+    // "except": scenes that a "*" leaves out (each must exist, so a renamed scene is noticed).
+    std::set<std::string> except;
+    if (c.contains("except"))
+      for (const std::string& e : stringList(c["except"], w, "except")) {
+        if (!scenes::find(e)) w.fail("except", "'" + e + "' is no built-in scene");
+        except.insert(e);
+      }
     const std::string glDriver = c.contains("gl_driver") ? stringField(c, "gl_driver", w, true) : options.glDriver;
     auto withSize = [&](std::vector<std::string> v) {
       if (!size.empty()) v.insert(v.end(), {"--size", size});
@@ -226,12 +235,12 @@ Suite loadSuite(const std::string& path, const LoadOptions& options) {
     if (kind == "render") {
       const std::string v = stringField(c, "scene", w, true);
       expands = v == "*";
-      for (const auto& [item, arg] : expandFrames(v, true, w, "scene"))
+      for (const auto& [item, arg] : expandFrames(v, true, w, "scene", except))
         items.push_back({item, withSize({"render", arg, "-o", "{out}/image.png", "--stats", "{out}/stats.json"})});
     } else if (kind == "replay" || kind == "crosscheck" || kind == "visibility") {
       const std::string v = stringField(c, "frame", w, true);
       expands = v == "*" || (!scenes::find(v) && hasGlobChars(v));
-      for (const auto& [item, arg] : expandFrames(v, kind == "replay" ? false : false, w, "frame")) {
+      for (const auto& [item, arg] : expandFrames(v, false, w, "frame", except)) {
         if (kind == "replay") {
           if (scenes::find(arg)) w.fail("frame", "replay needs .tframe files, '" + arg + "' is a scene (use kind render)");
           items.push_back({item, {"replay", arg, "-o", "{out}/image.png", "--stats", "{out}/stats.json"}});
