@@ -71,9 +71,10 @@ TEST(SuiteRun, FourShardsMergedEqualOneRunCaseByCaseApartFromDurations) {
   EXPECT_EQ(a[0]["figures"]["draw_calls"], 1);
   EXPECT_NE(a[0]["figures"]["image_sha256"], a[2]["figures"]["image_sha256"]);
   EXPECT_EQ(a[1]["figures"]["unexplained"], 0);
-  // The merged page links the shards' logs.
-  EXPECT_NE(test::readText(dir + "/merged/index.html").find("../shard1/cases/render/a/attempt1.step1.stdout.txt"),
-            std::string::npos);
+  // The merged page links the shards' case reports (a render's stats JSON) and, without one, logs.
+  const std::string html = test::readText(dir + "/merged/index.html");
+  EXPECT_NE(html.find("\"../shard1/cases/render/a/stats.json\""), std::string::npos);
+  EXPECT_NE(html.find("\"../shard2/cases/ok/1/attempt1.step1.stdout.txt\""), std::string::npos);
 }
 
 TEST(SuiteMerge, AMissingOrDuplicatedShardIsNamedCaseByCase) {

@@ -225,7 +225,9 @@ std::vector<CaseResult> runCases(const std::vector<SuiteCase>& cases, const RunO
         r.status = be && baselineExpects(*be, status1) ? "expected-fail" : status1;
       r.figures = keyFigures(readHead(s.stdoutPath, size_t(8) << 20));
       const std::string dir = caseDir(c);
-      if (fs::exists(dir + "/report/index.html", ec)) r.report = "cases/" + c.name + "/report/index.html";
+      // The case's report: a command's HTML report (crosscheck, compare, mutants), else its stats JSON (render, replay).
+      for (const char* f : {"/report/index.html", "/stats.json"})
+        if (r.report.empty() && fs::exists(dir + f, ec)) r.report = "cases/" + c.name + f;
       r.log = fs::relative(s.stdoutPath, outAbs, ec).string();
       results[s.ci] = r;
       running.erase(it);
