@@ -84,24 +84,32 @@ TEST(SuiteFile, EveryMalformedSuiteNamesTheFileTheCaseAndTheField) {
       {"{\"schema\": 1, \"name\": \"a b\", \"cases\": [{}]}", {"'name'"}},
       {"{\"schema\": 1, \"name\": \"x\", \"extra\": 1, \"cases\": [{}]}", {"'extra'", "unknown"}},
       {"{\"schema\": 1, \"name\": \"x\", \"cases\": [{\"kind\": \"golden\"}]}", {"case 0", "'name'", "missing"}},
-      {"{\"schema\": 1, \"name\": \"x\", \"cases\": [{\"name\": \"g\", \"kind\": \"golden\"}, {\"name\": \"q\", \"kind\": \"paint\"}]}",
+      {"{\"schema\": 1, \"name\": \"x\", \"cases\": [{\"name\": \"g\", \"kind\": \"golden\"}, {\"name\": \"q\", "
+       "\"kind\": \"paint\"}]}",
        {"case 1 (q)", "'kind'", "'paint'", "unknown"}},
-      {"{\"schema\": 1, \"name\": \"x\", \"cases\": [{\"name\": \"r\", \"kind\": \"render\", \"scene\": \"no_such_scene\"}]}",
+      {"{\"schema\": 1, \"name\": \"x\", \"cases\": [{\"name\": \"r\", \"kind\": \"render\", \"scene\": "
+       "\"no_such_scene\"}]}",
        {"case 0 (r)", "'scene'", "no_such_scene"}},
-      {"{\"schema\": 1, \"name\": \"x\", \"cases\": [{\"name\": \"r\", \"kind\": \"render\", \"scene\": \"fill_fan\", \"frame\": \"y\"}]}",
+      {"{\"schema\": 1, \"name\": \"x\", \"cases\": [{\"name\": \"r\", \"kind\": \"render\", \"scene\": \"fill_fan\", "
+       "\"frame\": \"y\"}]}",
        {"case 0 (r)", "'frame'", "unknown for kind 'render'"}},
-      {"{\"schema\": 1, \"name\": \"x\", \"cases\": [{\"name\": \"g\", \"kind\": \"golden\"}, {\"name\": \"g\", \"kind\": \"golden\"}]}",
+      {"{\"schema\": 1, \"name\": \"x\", \"cases\": [{\"name\": \"g\", \"kind\": \"golden\"}, {\"name\": \"g\", "
+       "\"kind\": \"golden\"}]}",
        {"case 1 (g)", "'name'", "earlier case"}},
-      {"{\"schema\": 1, \"name\": \"x\", \"cases\": [{\"name\": \"../g\", \"kind\": \"golden\"}]}", {"case 0", "'name'"}},
-      {"{\"schema\": 1, \"name\": \"x\", \"cases\": [{\"name\": \"f\", \"kind\": \"replay\", \"frame\": \"/nonexistent/*.tframe\"}]}",
+      {"{\"schema\": 1, \"name\": \"x\", \"cases\": [{\"name\": \"../g\", \"kind\": \"golden\"}]}",
+       {"case 0", "'name'"}},
+      {"{\"schema\": 1, \"name\": \"x\", \"cases\": [{\"name\": \"f\", \"kind\": \"replay\", \"frame\": "
+       "\"/nonexistent/*.tframe\"}]}",
        {"case 0 (f)", "'frame'", "matches no file"}},
       {"{\"schema\": 1, \"name\": \"x\", \"cases\": [{\"name\": \"g\", \"kind\": \"golden\", \"timeout_seconds\": 0}]}",
        {"case 0 (g)", "'timeout_seconds'"}},
-      {"{\"schema\": 1, \"name\": \"x\", \"cases\": [{\"name\": \"g\", \"kind\": \"golden\", \"memory_limit\": \"4KB\"}]}",
+      {"{\"schema\": 1, \"name\": \"x\", \"cases\": [{\"name\": \"g\", \"kind\": \"golden\", \"memory_limit\": "
+       "\"4KB\"}]}",
        {"case 0 (g)", "'memory_limit'"}},
       {"{\"schema\": 1, \"name\": \"x\", \"cases\": [{\"name\": \"c\", \"kind\": \"command\", \"steps\": [[]]}]}",
        {"case 0 (c)", "'steps'"}},
-      {"{\"schema\": 1, \"name\": \"x\", \"defaults\": {\"retries\": 3}, \"cases\": [{\"name\": \"g\", \"kind\": \"golden\"}]}",
+      {"{\"schema\": 1, \"name\": \"x\", \"defaults\": {\"retries\": 3}, \"cases\": [{\"name\": \"g\", \"kind\": "
+       "\"golden\"}]}",
        {"'defaults.retries'", "unknown"}},
   };
   for (const Bad& b : bad) {
@@ -113,11 +121,14 @@ TEST(SuiteFile, EveryMalformedSuiteNamesTheFileTheCaseAndTheField) {
 TEST(SuiteFile, StarAndGlobsExpandToOneCaseNamedAfterEachItemInOrder) {
   const std::string dir = scratchDir("globs");
   for (const char* f : {"b.tframe", "a.tframe", "c.txt"}) writeText(dir + "/" + f, "x");
-  writeText(dir + "/s.json", "{\"schema\": 1, \"name\": \"x\", \"cases\": ["
-                             "{\"name\": \"frames\", \"kind\": \"replay\", \"frame\": \"" + dir + "/*.tframe\"},"
-                             "{\"name\": \"scenes\", \"kind\": \"render\", \"scene\": \"*\", \"size\": \"8x8\"},"
-                             "{\"name\": \"one\", \"kind\": \"visibility\", \"frame\": \"fill_fan\"},"
-                             "{\"name\": \"xc\", \"kind\": \"crosscheck\", \"frame\": \"fill_fan\"}]}");
+  writeText(dir + "/s.json",
+            "{\"schema\": 1, \"name\": \"x\", \"cases\": ["
+            "{\"name\": \"frames\", \"kind\": \"replay\", \"frame\": \"" +
+                dir +
+                "/*.tframe\"},"
+                "{\"name\": \"scenes\", \"kind\": \"render\", \"scene\": \"*\", \"size\": \"8x8\"},"
+                "{\"name\": \"one\", \"kind\": \"visibility\", \"frame\": \"fill_fan\"},"
+                "{\"name\": \"xc\", \"kind\": \"crosscheck\", \"frame\": \"fill_fan\"}]}");
   const Suite s = loadSuite(dir + "/s.json", {});
   const size_t nScenes = scenes::all().size();
   ASSERT_EQ(s.cases.size(), 2 + nScenes + 2);
@@ -154,9 +165,11 @@ TEST(SuiteBaseline, EntriesMatchWholeNamesUnderTheirConditionAndErrorsNameEntryA
   EXPECT_TRUE(baselineExpects(*b.match("xc/t", "softpipe"), "timeout"));
   const std::vector<std::pair<const char*, const char*>> bad = {
       {R"({"schema": 1, "entries": [{"id": "a", "case": "(", "reason": "r"}]})", "entry 0 (a): field 'case'"},
-      {R"({"schema": 1, "entries": [{"id": "a", "case": "x", "status": "pass", "reason": "r"}]})", "entry 0 (a): field 'status'"},
+      {R"({"schema": 1, "entries": [{"id": "a", "case": "x", "status": "pass", "reason": "r"}]})",
+       "entry 0 (a): field 'status'"},
       {R"({"schema": 1, "entries": [{"id": "a", "case": "x"}]})", "entry 0 (a): field 'reason': missing"},
-      {R"({"schema": 1, "entries": [{"id": "a", "case": "x", "reason": "r", "pixels": 3}]})", "entry 0 (a): field 'pixels'"},
+      {R"({"schema": 1, "entries": [{"id": "a", "case": "x", "reason": "r", "pixels": 3}]})",
+       "entry 0 (a): field 'pixels'"},
       {R"({"schema": 1, "entries": [{"id": "a", "case": "x", "reason": "r"}, {"id": "a", "case": "y", "reason": "r"}]})",
        "entry 1 (a): field 'id'"},
       {R"({"schema": 1, "entries": [{"id": "A", "case": "x", "reason": "r"}]})", "entry 0 (A): field 'id'"},

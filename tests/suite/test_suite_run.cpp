@@ -46,9 +46,8 @@ TEST(SuiteRun, FourShardsMergedEqualOneRunCaseByCaseApartFromDurations) {
   std::set<std::string> ran;
   for (int k = 1; k <= 4; ++k) {
     const std::string out = dir + "/shard" + std::to_string(k);
-    const test::Run r = tessera("suite run '" + suite + "' --backends cpu --fraction " + std::to_string(k) + "/4 -o '" +
-                                    out + "'",
-                                out);
+    const test::Run r = tessera(
+        "suite run '" + suite + "' --backends cpu --fraction " + std::to_string(k) + "/4 -o '" + out + "'", out);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const json shard = readJson(out + "/results.json");
     for (const json& c : shard["cases"]) {
@@ -81,8 +80,8 @@ TEST(SuiteMerge, AMissingOrDuplicatedShardIsNamedCaseByCase) {
   const std::string dir = scratchDir("merge");
   const std::string suite = smallSuite(dir);
   for (int k : {1, 2})
-    ASSERT_EQ(tessera("suite run '" + suite + "' --backends cpu --quiet --fraction " + std::to_string(k) + "/2 -o '" + dir +
-                          "/s" + std::to_string(k) + "'",
+    ASSERT_EQ(tessera("suite run '" + suite + "' --backends cpu --quiet --fraction " + std::to_string(k) + "/2 -o '" +
+                          dir + "/s" + std::to_string(k) + "'",
                       dir + "/s" + std::to_string(k))
                   .exitCode,
               0);
@@ -90,7 +89,8 @@ TEST(SuiteMerge, AMissingOrDuplicatedShardIsNamedCaseByCase) {
   const test::Run missing = tessera("suite merge '" + dir + "/s1' -o '" + dir + "/m1'", dir + "/m1");
   EXPECT_EQ(missing.exitCode, 2);
   EXPECT_NE(missing.err.find("3 missing: ok/1, ok/2, render/c"), std::string::npos) << missing.err;
-  const test::Run dup = tessera("suite merge '" + dir + "/s1' '" + dir + "/s2' '" + dir + "/s1' -o '" + dir + "/m2'", dir + "/m2");
+  const test::Run dup =
+      tessera("suite merge '" + dir + "/s1' '" + dir + "/s2' '" + dir + "/s1' -o '" + dir + "/m2'", dir + "/m2");
   EXPECT_EQ(dup.exitCode, 2);
   EXPECT_NE(dup.err.find("4 duplicated: render/a (in " + dir + "/s1, " + dir + "/s1)"), std::string::npos) << dup.err;
   EXPECT_FALSE(std::filesystem::exists(dir + "/m1/results.json"));
@@ -110,8 +110,8 @@ TEST(SuiteRun, MisbehavingCasesGetTheirOwnStatusAndTheRunGoesOn) {
   writeText(dir + "/baseline.json", R"({"schema": 1, "entries": [
     {"id": "known-failures", "case": "expected/.*", "status": "fail", "reason": "the test's expected failures"}]})");
   writeText(dir + "/flakes.txt", "# known\nknown-.*\n");
-  const test::Run r = tessera("suite run '" + dir + "/bad.json' --jobs 2 --baseline '" + dir + "/baseline.json' --flakes '" +
-                                  dir + "/flakes.txt' -o '" + dir + "/out'",
+  const test::Run r = tessera("suite run '" + dir + "/bad.json' --jobs 2 --baseline '" + dir +
+                                  "/baseline.json' --flakes '" + dir + "/flakes.txt' -o '" + dir + "/out'",
                               dir + "/out");
   EXPECT_EQ(r.exitCode, 1) << r.err;
   const json cases = readJson(dir + "/out/results.json")["cases"];
@@ -143,9 +143,11 @@ TEST(SuiteRun, MisbehavingCasesGetTheirOwnStatusAndTheRunGoesOn) {
 
   // The JUnit file parses with Python's xml.etree and counts: failures = fail, unexpected pass and the
   // unknown flake; errors = crash and timeout; skipped = the expected failure.
-  const std::string py = "python3 -c \"import sys, xml.etree.ElementTree as E; r = E.parse(sys.argv[1]).getroot(); "
-                         "s = r.find('testsuite'); print(r.tag, s.get('tests'), s.get('failures'), s.get('errors'), "
-                         "s.get('skipped'), len(s.findall('testcase')))\" '" + dir + "/out/junit.xml' > '" + dir + "/py.txt'";
+  const std::string py =
+      "python3 -c \"import sys, xml.etree.ElementTree as E; r = E.parse(sys.argv[1]).getroot(); "
+      "s = r.find('testsuite'); print(r.tag, s.get('tests'), s.get('failures'), s.get('errors'), "
+      "s.get('skipped'), len(s.findall('testcase')))\" '" +
+      dir + "/out/junit.xml' > '" + dir + "/py.txt'";
   if (std::system("python3 -c 'import xml.etree.ElementTree' 2>/dev/null") != 0) GTEST_SKIP() << "no python3";
   ASSERT_EQ(std::system(py.c_str()), 0);
   EXPECT_EQ(test::readText(dir + "/py.txt"), "testsuites 8 3 2 1 8\n");
@@ -179,7 +181,8 @@ TEST(SuiteRun, BadInputExitsTwoNamingFileAndField) {
   EXPECT_EQ(b.exitCode, 2);
   EXPECT_NE(b.err.find("--fraction '0/3'"), std::string::npos) << b.err;
   writeText(dir + "/f.txt", "(\n");
-  const test::Run c = tessera("suite run '" + suite + "' --flakes '" + dir + "/f.txt' -o '" + dir + "/o3'", dir + "/o3");
+  const test::Run c =
+      tessera("suite run '" + suite + "' --flakes '" + dir + "/f.txt' -o '" + dir + "/o3'", dir + "/o3");
   EXPECT_EQ(c.exitCode, 2);
   EXPECT_NE(c.err.find("f.txt:1:"), std::string::npos) << c.err;
   EXPECT_FALSE(std::filesystem::exists(dir + "/o1/results.json"));

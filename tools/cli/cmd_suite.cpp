@@ -47,7 +47,8 @@ int finish(const std::string& dir, const suite::RunInfo& run, const std::vector<
 void runSuite(const SuiteRunArgs& a) {
   if (!a.list && a.outDir.empty()) throw Error("suite run: -o DIR is required (or --list)");
   if (a.backends != "cpu" && a.backends != "cpu,gl")
-    throw Error("--backends '" + a.backends + "': expected cpu,gl (every case) or cpu (leave out the cases that need GL)");
+    throw Error("--backends '" + a.backends +
+                "': expected cpu,gl (every case) or cpu (leave out the cases that need GL)");
   const suite::Fraction fraction = suite::parseFraction(a.fraction);
   suite::LoadOptions lo;
   lo.gl = a.backends == "cpu,gl";
@@ -57,7 +58,8 @@ void runSuite(const SuiteRunArgs& a) {
     // The shard's cases as they would run, without running them (and without -o).
     nlohmann::json j = nlohmann::json::array();
     for (const suite::SuiteCase& c : suite::selectFraction(s.cases, fraction))
-      j.push_back({{"index", c.index}, {"name", c.name}, {"kind", c.kind}, {"needs_gl", c.needsGl}, {"steps", c.steps}});
+      j.push_back(
+          {{"index", c.index}, {"name", c.name}, {"kind", c.kind}, {"needs_gl", c.needsGl}, {"steps", c.steps}});
     std::printf("%s\n", j.dump(2).c_str());
     return;
   }
@@ -118,8 +120,9 @@ void testCase(const std::string& mode, const std::string& state) {
 }  // namespace
 
 void addSuiteCommands(CLI::App& app) {
-  auto* cmd = app.add_subcommand("suite", "Run a suite of cases (scenes, frames, cross-checks, goldens, model frame sets) "
-                                          "as child processes, sharded with --fraction; merge shards (docs/suite.md)");
+  auto* cmd = app.add_subcommand("suite",
+                                 "Run a suite of cases (scenes, frames, cross-checks, goldens, model frame sets) "
+                                 "as child processes, sharded with --fraction; merge shards (docs/suite.md)");
   cmd->require_subcommand(1);
   auto a = std::make_shared<SuiteRunArgs>();
   auto* run = cmd->add_subcommand(
@@ -127,7 +130,8 @@ void addSuiteCommands(CLI::App& app) {
       "Run the cases of SUITE.json (or shard K of M of them) in --jobs child processes, each with a timeout; retry a\n"
       "failing case once (a pass then is a flake); write results.json, junit.xml and index.html to -o DIR.\n"
       "Exit 0 when every result is a pass or expected (baseline, known flakes), 1 otherwise, 2 on bad input.");
-  run->add_option("suite", a->suiteFile, "The suite file (docs/suite.md; suites/smoke.json, suites/full.json)")->required();
+  run->add_option("suite", a->suiteFile, "The suite file (docs/suite.md; suites/smoke.json, suites/full.json)")
+      ->required();
   run->add_option("--backends", a->backends, "cpu,gl (every case) or cpu (leave out the cases that need GL)")
       ->capture_default_str();
   run->add_option("--gl-driver", a->glDriver, "Passed to every case that runs GL: llvmpipe, softpipe or zink");
@@ -149,8 +153,9 @@ void addSuiteCommands(CLI::App& app) {
   };
   auto m = std::make_shared<MergeArgs>();
   auto* merge = cmd->add_subcommand(
-      "merge", "Join the output directories of the shards of one run into one results.json, junit.xml and index.html;\n"
-               "exit 2 naming every case that is missing or ran more than once, else as `suite run`");
+      "merge",
+      "Join the output directories of the shards of one run into one results.json, junit.xml and index.html;\n"
+      "exit 2 naming every case that is missing or ran more than once, else as `suite run`");
   merge->add_option("dirs", m->dirs, "The shards' output directories")->required();
   merge->add_option("-o,--output", m->outDir, "Output directory")->required();
   merge->callback([m] {

@@ -1,11 +1,11 @@
 #include "tools/cli/suite_results.h"
 
+#include <fmt/format.h>
+
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
-
-#include <fmt/format.h>
 
 #include "base/atomic_file.h"
 #include "base/error.h"
@@ -35,14 +35,26 @@ std::string xmlEscape(std::string_view s) {
   std::string out;
   for (char ch : s) {
     switch (ch) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
       default:
-        if (static_cast<unsigned char>(ch) < 0x20 && ch != '\n' && ch != '\t') out += '?';
-        else out += ch;
+        if (static_cast<unsigned char>(ch) < 0x20 && ch != '\n' && ch != '\t')
+          out += '?';
+        else
+          out += ch;
     }
   }
   return out;
@@ -55,8 +67,14 @@ bool CaseResult::acceptable() const {
 }
 
 json CaseResult::toJson() const {
-  json j = {{"index", index},         {"name", name},       {"kind", kind},     {"status", status},
-            {"duration_seconds", durationSeconds}, {"attempts", attempts}, {"exit", exit}, {"figures", figures}};
+  json j = {{"index", index},
+            {"name", name},
+            {"kind", kind},
+            {"status", status},
+            {"duration_seconds", durationSeconds},
+            {"attempts", attempts},
+            {"exit", exit},
+            {"figures", figures}};
   if (!detail.empty()) j["detail"] = detail;
   if (!firstAttempt.empty()) j["first_attempt"] = firstAttempt;
   if (!baselineId.empty()) j["baseline"] = baselineId;
@@ -133,7 +151,8 @@ FlakeList loadFlakes(const std::string& path) {
     try {
       f.patterns.emplace_back(line, compileWhole(line));
     } catch (const std::regex_error& e) {
-      throw Error(path + ":" + std::to_string(n) + ": '" + line + "' is not an ECMAScript regular expression: " + e.what());
+      throw Error(path + ":" + std::to_string(n) + ": '" + line +
+                  "' is not an ECMAScript regular expression: " + e.what());
     }
   }
   return f;
@@ -219,8 +238,8 @@ Baseline loadBaseline(const std::string& path) {
 namespace {
 
 json runJson(const RunInfo& run) {
-  return {{"suite", run.suiteName},     {"suite_file", run.suiteFile}, {"suite_sha256", run.suiteSha256},
-          {"backends", run.backends},   {"gl_driver", run.glDriver},  {"fraction", run.fraction},
+  return {{"suite", run.suiteName},        {"suite_file", run.suiteFile},  {"suite_sha256", run.suiteSha256},
+          {"backends", run.backends},      {"gl_driver", run.glDriver},    {"fraction", run.fraction},
           {"suite_cases", run.suiteCases}, {"all_cases", run.allCaseNames}};
 }
 
@@ -246,8 +265,11 @@ json resultsJson(const RunInfo& run, const std::vector<CaseResult>& results) {
   json counts = json::object();
   for (const auto& [k, v] : countStatuses(results)) counts[k] = v;
   return {{"run", runJson(run)},
-          {"summary", {{"cases", results.size()}, {"statuses", counts}, {"all_pass_or_expected", allAcceptable(results)},
-                       {"case_seconds", total}}},
+          {"summary",
+           {{"cases", results.size()},
+            {"statuses", counts},
+            {"all_pass_or_expected", allAcceptable(results)},
+            {"case_seconds", total}}},
           {"cases", cases}};
 }
 
@@ -257,18 +279,19 @@ std::string junitXml(const RunInfo& run, const std::vector<CaseResult>& results)
   std::string body;
   for (const CaseResult& r : results) {
     total += r.durationSeconds;
-    body += fmt::format("    <testcase classname=\"tessera.{}.{}\" name=\"{}\" time=\"{:.3f}\">\n", xmlEscape(run.suiteName),
-                        xmlEscape(r.kind), xmlEscape(r.name), r.durationSeconds);
+    body += fmt::format("    <testcase classname=\"tessera.{}.{}\" name=\"{}\" time=\"{:.3f}\">\n",
+                        xmlEscape(run.suiteName), xmlEscape(r.kind), xmlEscape(r.name), r.durationSeconds);
     const std::string info = r.exit + (r.detail.empty() ? "" : " (" + r.detail + ")") +
-                             (r.log.empty() ? "" : "; log: " + r.log) + (r.report.empty() ? "" : "; report: " + r.report);
+                             (r.log.empty() ? "" : "; log: " + r.log) +
+                             (r.report.empty() ? "" : "; report: " + r.report);
     if (r.status == "fail" || r.status == "unexpected-pass" || (r.status == "flake" && !r.knownFlake)) {
       ++failures;
-      const std::string msg = r.status == "unexpected-pass" ? "unexpected pass: baseline entry " + r.baselineId +
-                                                                  " can be removed"
+      const std::string msg = r.status == "unexpected-pass"
+                                  ? "unexpected pass: baseline entry " + r.baselineId + " can be removed"
                               : r.status == "flake" ? "flaky: failed (" + r.firstAttempt + ") then passed on retry"
                                                     : "failed: " + r.exit;
-      body += fmt::format("      <failure type=\"{}\" message=\"{}\">{}\nfigures: {}</failure>\n", r.status, xmlEscape(msg),
-                          xmlEscape(info), xmlEscape(r.figures.dump()));
+      body += fmt::format("      <failure type=\"{}\" message=\"{}\">{}\nfigures: {}</failure>\n", r.status,
+                          xmlEscape(msg), xmlEscape(info), xmlEscape(r.figures.dump()));
     } else if (r.status == "crash" || r.status == "timeout") {
       ++errors;
       body += fmt::format("      <error type=\"{}\" message=\"{}\">{}</error>\n", r.status,
@@ -298,7 +321,7 @@ std::string junitXml(const RunInfo& run, const std::vector<CaseResult>& results)
 std::string summaryHtml(const RunInfo& run, const std::vector<CaseResult>& results) {
   using verify::escapeHtml;
   static const std::map<std::string, std::string> kColour = {
-      {"pass", "#cfc"}, {"fail", "#f99"}, {"crash", "#f66"}, {"timeout", "#fc6"},
+      {"pass", "#cfc"},  {"fail", "#f99"},          {"crash", "#f66"},          {"timeout", "#fc6"},
       {"flake", "#ffc"}, {"expected-fail", "#ddd"}, {"unexpected-pass", "#9cf"}};
   std::string counts;
   for (const auto& [k, v] : countStatuses(results))
@@ -332,7 +355,8 @@ std::string summaryHtml(const RunInfo& run, const std::vector<CaseResult>& resul
       "<table border=1 cellspacing=0><tr><th>#</th><th>case</th><th>status</th><th>s</th><th>exit</th>"
       "<th>key figures</th><th>note</th></tr>\n{7}</table>\n",
       escapeHtml(run.suiteName), results.size(), run.suiteCases, escapeHtml(run.fraction), escapeHtml(run.backends),
-      allAcceptable(results) ? "every result is a pass or expected" : "<b>some results are neither a pass nor expected</b>",
+      allAcceptable(results) ? "every result is a pass or expected"
+                             : "<b>some results are neither a pass nor expected</b>",
       counts, rows);
 }
 
@@ -342,21 +366,23 @@ void writeRunOutputs(const std::string& dir, const RunInfo& run, const std::vect
   writeFileAtomically(dir + "/index.html", summaryHtml(run, results));
 }
 
-std::pair<RunInfo, std::vector<CaseResult>> mergeShards(const std::vector<std::string>& dirs, const std::string& outDir) {
+std::pair<RunInfo, std::vector<CaseResult>> mergeShards(const std::vector<std::string>& dirs,
+                                                        const std::string& outDir) {
   if (dirs.empty()) throw Error("suite merge: no shard directories given");
   RunInfo run;
   std::vector<std::vector<std::string>> seen;  // per suite index, the shard directories that ran it
   std::vector<CaseResult> byIndex;
   for (size_t d = 0; d < dirs.size(); ++d) {
     const std::string file = dirs[d] + "/results.json";
-    const json doc = json::parse(readText(file, "results of a shard (results.json of `tessera suite run`)"), nullptr, false);
+    const json doc =
+        json::parse(readText(file, "results of a shard (results.json of `tessera suite run`)"), nullptr, false);
     if (doc.is_discarded() || !doc.contains("run") || !doc.contains("cases") || !doc["cases"].is_array())
       throw Error(file + ": not the results.json of `tessera suite run`");
     RunInfo r;
     try {
       const json& j = doc["run"];
-      r = {j.at("suite"),       j.at("suite_file"),  j.at("suite_sha256"), j.at("backends"),
-           j.at("gl_driver"),   j.at("fraction"),    j.at("suite_cases"),  j.at("all_cases")};
+      r = {j.at("suite"),     j.at("suite_file"), j.at("suite_sha256"), j.at("backends"),
+           j.at("gl_driver"), j.at("fraction"),   j.at("suite_cases"),  j.at("all_cases")};
     } catch (const json::exception& e) {
       throw Error(file + ": field 'run': " + e.what());
     }

@@ -24,14 +24,14 @@ struct CaseResult {
   std::string status;
   double durationSeconds = 0;  // every attempt's steps, wall time
   int attempts = 1;
-  std::string exit;            // how the deciding attempt ended: "exit 0", "exit 1", "signal 6", "timeout after 5 s"
-  std::string detail;          // for a crash: "out of memory" when the process said so
-  std::string firstAttempt;    // for a flake or a retried failure: how attempt 1 ended
-  std::string baselineId;      // the matching baseline entry, if any
-  bool knownFlake = false;     // the name matches --flakes
+  std::string exit;          // how the deciding attempt ended: "exit 0", "exit 1", "signal 6", "timeout after 5 s"
+  std::string detail;        // for a crash: "out of memory" when the process said so
+  std::string firstAttempt;  // for a flake or a retried failure: how attempt 1 ended
+  std::string baselineId;    // the matching baseline entry, if any
+  bool knownFlake = false;   // the name matches --flakes
   nlohmann::json figures = nlohmann::json::object();  // key figures taken from the last step's JSON
-  std::string report;          // path of the case's report, relative to the run's output directory
-  std::string log;             // path of the deciding attempt's last stdout, relative likewise
+  std::string report;  // path of the case's report, relative to the run's output directory
+  std::string log;     // path of the deciding attempt's last stdout, relative likewise
 
   // pass, expected-fail, and a flake that --flakes lists.
   bool acceptable() const;
@@ -70,7 +70,7 @@ bool baselineExpects(const BaselineEntry& e, const std::string& status);
 // The run's identity, written into results.json; shards of one run must agree on it.
 struct RunInfo {
   std::string suiteName, suiteFile, suiteSha256, backends, glDriver, fraction;
-  size_t suiteCases = 0;                 // cases of the whole suite after the --backends filter
+  size_t suiteCases = 0;                  // cases of the whole suite after the --backends filter
   std::vector<std::string> allCaseNames;  // in index order: lets `merge` name the missing ones
 };
 
@@ -83,6 +83,7 @@ void writeRunOutputs(const std::string& dir, const RunInfo& run, const std::vect
 // Reads DIR/results.json of each shard, checks that they are shards of one run and that every case of
 // the suite appears exactly once (Error naming the missing and duplicated cases otherwise), and returns
 // the cases in suite order with report/log paths made relative to `outDir`.
-std::pair<RunInfo, std::vector<CaseResult>> mergeShards(const std::vector<std::string>& dirs, const std::string& outDir);
+std::pair<RunInfo, std::vector<CaseResult>> mergeShards(const std::vector<std::string>& dirs,
+                                                        const std::string& outDir);
 
 }  // namespace tessera::cli::suite

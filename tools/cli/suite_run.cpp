@@ -1,6 +1,7 @@
 #include "tools/cli/suite_run.h"
 
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -12,8 +13,6 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-
-#include <fmt/format.h>
 
 #include "base/error.h"
 
@@ -66,8 +65,8 @@ std::string substitute(std::string arg, const std::string& out, const std::strin
   return arg;
 }
 
-pid_t spawn(const std::string& exe, const std::vector<std::string>& args, const std::string& out, const std::string& err,
-            uint64_t memoryBytes) {
+pid_t spawn(const std::string& exe, const std::vector<std::string>& args, const std::string& out,
+            const std::string& err, uint64_t memoryBytes) {
   const int outFd = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   const int errFd = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   const int inFd = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
@@ -86,7 +85,7 @@ pid_t spawn(const std::string& exe, const std::vector<std::string>& args, const 
     // Only async-signal-safe calls until exec.
     ::setpgid(0, 0);
     if (memoryBytes) {
-      const struct rlimit lim{rlim_t(memoryBytes), rlim_t(memoryBytes)};
+      const struct rlimit lim { rlim_t(memoryBytes), rlim_t(memoryBytes) };
       ::setrlimit(RLIMIT_AS, &lim);
     }
     ::dup2(inFd, 0), ::dup2(outFd, 1), ::dup2(errFd, 2);
@@ -114,7 +113,8 @@ std::vector<CaseResult> runCases(const std::vector<SuiteCase>& cases, const RunO
   size_t next = 0, done = 0;
 
   gStopSignal = 0;
-  struct sigaction sa{}, oldInt{}, oldTerm{};
+  struct sigaction sa {
+  }, oldInt{}, oldTerm{};
   sa.sa_handler = onStopSignal;
   sigemptyset(&sa.sa_mask);
   ::sigaction(SIGINT, &sa, &oldInt);
@@ -171,7 +171,9 @@ std::vector<CaseResult> runCases(const std::vector<SuiteCase>& cases, const RunO
             ::kill(-s.pid, SIGKILL), ::kill(s.pid, SIGKILL);
           }
         }
-        struct timespec ts{0, 5'000'000};
+        struct timespec ts {
+          0, 5'000'000
+        };
         ::nanosleep(&ts, nullptr);
         continue;
       }
@@ -207,7 +209,8 @@ std::vector<CaseResult> runCases(const std::vector<SuiteCase>& cases, const RunO
       if (status1 != "pass" && s.attempt == 1 && !(be && baselineExpects(*be, status1))) {
         // One retry, from the first step, with fresh logs (attempt2.*) in the same directory.
         if (o.progress)
-          std::fprintf(stderr, "suite: %s: %s (%s), retrying once\n", c.name.c_str(), status1.c_str(), exitText.c_str());
+          std::fprintf(stderr, "suite: %s: %s (%s), retrying once\n", c.name.c_str(), status1.c_str(),
+                       exitText.c_str());
         s.firstExit = exitText, s.firstStatus = status1;
         s.attempt = 2, s.step = 0, s.attemptStart = Clock::now();
         startStep(s);
@@ -225,7 +228,8 @@ std::vector<CaseResult> runCases(const std::vector<SuiteCase>& cases, const RunO
         r.status = be && baselineExpects(*be, status1) ? "expected-fail" : status1;
       r.figures = keyFigures(readHead(s.stdoutPath, size_t(8) << 20));
       const std::string dir = caseDir(c);
-      // The case's report: a command's HTML report (crosscheck, compare, mutants), else its stats JSON (render, replay).
+      // The case's report: a command's HTML report (crosscheck, compare, mutants), else its stats JSON (render,
+      // replay).
       for (const char* f : {"/report/index.html", "/stats.json"})
         if (r.report.empty() && fs::exists(dir + f, ec)) r.report = "cases/" + c.name + f;
       r.log = fs::relative(s.stdoutPath, outAbs, ec).string();

@@ -21,11 +21,11 @@ namespace tessera::cli::suite {
 
 struct RunOptions {
   int jobs = 1;
-  std::string outDir;              // cases go to <outDir>/cases/<name>/
-  std::string glDriver;            // for the baseline's condition
+  std::string outDir;    // cases go to <outDir>/cases/<name>/
+  std::string glDriver;  // for the baseline's condition
   const Baseline* baseline = nullptr;
   const FlakeList* flakes = nullptr;
-  bool progress = true;            // a line per finished case on stderr
+  bool progress = true;  // a line per finished case on stderr
 };
 
 std::vector<CaseResult> runCases(const std::vector<SuiteCase>& cases, const RunOptions& options);

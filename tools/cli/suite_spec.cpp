@@ -24,9 +24,14 @@ namespace {
 // The fields each kind accepts besides the common ones (name, kind, comment, timeout_seconds,
 // memory_limit, args).
 const std::vector<std::pair<std::string, std::set<std::string>>> kKinds = {
-    {"render", {"scene", "size", "except"}}, {"replay", {"frame"}}, {"crosscheck", {"frame", "size", "gl_driver", "except"}},
-    {"visibility", {"frame", "size", "except"}}, {"compare", {"a", "b"}}, {"golden", {}},
-    {"mutant", {"mutant", "scenes"}}, {"command", {"steps", "gl"}}};
+    {"render", {"scene", "size", "except"}},
+    {"replay", {"frame"}},
+    {"crosscheck", {"frame", "size", "gl_driver", "except"}},
+    {"visibility", {"frame", "size", "except"}},
+    {"compare", {"a", "b"}},
+    {"golden", {}},
+    {"mutant", {"mutant", "scenes"}},
+    {"command", {"steps", "gl"}}};
 const std::set<std::string> kCommon = {"name", "kind", "comment", "timeout_seconds", "memory_limit", "args"};
 
 struct Where {
@@ -61,12 +66,14 @@ std::string resolveFile(const std::string& p, const Where& w, const std::string&
   if (fs::exists(p, ec)) return fs::absolute(p).lexically_normal().string();
   const fs::path c = fs::path(repoRoot()) / p;
   if (fs::exists(c, ec)) return c.lexically_normal().string();
-  w.fail(field, "'" + p + "' does not exist (relative paths are looked up in the working directory, then in the clone)");
+  w.fail(field,
+         "'" + p + "' does not exist (relative paths are looked up in the working directory, then in the clone)");
 }
 
 // What a "frame" or "scene" field stands for: (item name, argument) pairs.
 std::vector<std::pair<std::string, std::string>> expandFrames(const std::string& v, bool scenesOnly, const Where& w,
-                                                              const std::string& field, const std::set<std::string>& except) {
+                                                              const std::string& field,
+                                                              const std::set<std::string>& except) {
   std::vector<std::pair<std::string, std::string>> out;
   if (v == "*") {
     for (const scenes::SceneInfo& s : scenes::all())
@@ -133,7 +140,8 @@ bool isValidCaseName(std::string_view name) {
     const std::string_view seg = name.substr(start, end - start);
     if (seg.empty() || seg == "." || seg == "..") return false;
     for (char ch : seg)
-      if (!(std::isalnum(static_cast<unsigned char>(ch)) || std::string_view("._@+=-").find(ch) != std::string_view::npos))
+      if (!(std::isalnum(static_cast<unsigned char>(ch)) ||
+            std::string_view("._@+=-").find(ch) != std::string_view::npos))
         return false;
     if (end == name.size()) return true;
     start = end + 1;
@@ -203,14 +211,16 @@ Suite loadSuite(const std::string& path, const LoadOptions& options) {
     const std::string kind = stringField(c, "kind", w, true);
     const auto k = std::find_if(kKinds.begin(), kKinds.end(), [&](const auto& p) { return p.first == kind; });
     if (k == kKinds.end())
-      w.fail("kind", "'" + kind + "': unknown (render, replay, crosscheck, visibility, compare, golden, mutant, command)");
+      w.fail("kind",
+             "'" + kind + "': unknown (render, replay, crosscheck, visibility, compare, golden, mutant, command)");
     for (const auto& [key, v] : c.items())
       if (!kCommon.count(key) && !k->second.count(key)) w.fail(key, "unknown for kind '" + kind + "'");
     SuiteCase base;
     base.kind = kind;
     base.timeoutSeconds = c.contains("timeout_seconds") ? timeoutField(c["timeout_seconds"], w) : timeout;
     base.memoryBytes = c.contains("memory_limit") ? memoryField(c["memory_limit"], w) : memory;
-    const std::vector<std::string> extra = c.contains("args") ? stringList(c["args"], w, "args") : std::vector<std::string>{};
+    const std::vector<std::string> extra =
+        c.contains("args") ? stringList(c["args"], w, "args") : std::vector<std::string>{};
     if (kind == "command" && !extra.empty()) w.fail("args", "a command case gives its arguments in 'steps'");
     const std::string size = c.contains("size") ? stringField(c, "size", w, true) : "";
     // "except": scenes that a "*" leaves out (each must exist, so a renamed scene is noticed).
@@ -242,7 +252,8 @@ Suite loadSuite(const std::string& path, const LoadOptions& options) {
       expands = v == "*" || (!scenes::find(v) && hasGlobChars(v));
       for (const auto& [item, arg] : expandFrames(v, false, w, "frame", except)) {
         if (kind == "replay") {
-          if (scenes::find(arg)) w.fail("frame", "replay needs .tframe files, '" + arg + "' is a scene (use kind render)");
+          if (scenes::find(arg))
+            w.fail("frame", "replay needs .tframe files, '" + arg + "' is a scene (use kind render)");
           items.push_back({item, {"replay", arg, "-o", "{out}/image.png", "--stats", "{out}/stats.json"}});
         } else if (kind == "crosscheck") {
           items.push_back({item, withGl(withSize({"crosscheck", arg, "--report", "{out}/report"}))});

@@ -18,9 +18,9 @@
 namespace tessera::cli::suite {
 
 struct SuiteCase {
-  size_t index = 0;   // position in the expanded suite (after the --backends filter), from 0
-  std::string name;   // stable, unique: [A-Za-z0-9._@+=-] segments joined by '/'
-  std::string kind;   // the suite file's kind
+  size_t index = 0;  // position in the expanded suite (after the --backends filter), from 0
+  std::string name;  // stable, unique: [A-Za-z0-9._@+=-] segments joined by '/'
+  std::string kind;  // the suite file's kind
   // One `tessera` command line (without the executable) per step; the steps run one after the other
   // and the case passes when every step exits 0. Placeholders are still in ({out}).
   std::vector<std::vector<std::string>> steps;
@@ -37,8 +37,8 @@ struct Suite {
 };
 
 struct LoadOptions {
-  bool gl = true;           // --backends includes gl; otherwise cases that need GL are left out
-  std::string glDriver;     // --gl-driver, passed to every case that runs GL ("" = the default)
+  bool gl = true;        // --backends includes gl; otherwise cases that need GL are left out
+  std::string glDriver;  // --gl-driver, passed to every case that runs GL ("" = the default)
 };
 
 // Throws Error "<file>: case <i> (<name>): field '<f>': <reason>" (or "<file>: <reason>") on anything
