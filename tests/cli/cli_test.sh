@@ -19,14 +19,14 @@ case "$case_name" in
   demo_writes_report_and_images)
     # The scenes half of the demo; demo_runs_the_atlas_tree_on_railway runs the other half, so that each
     # stays well inside its timeout in the ASan build on a loaded machine.
-    "$tessera" demo -o demo --threads 2 --no-mta --no-tab --no-rtta > stdout.json
+    "$tessera" demo -o demo --threads 2 --no-suite --no-mta --no-tab --no-rtta > stdout.json
     for f in report.json index.html fill_fan.png city_block.png city_ids.exr city_ids.a1.exr city_block.tframe; do
       [ -s "demo/$f" ] || fail "demo did not write $f"
     done
     [ "$(json_field demo/report.json "['bit_identical_1_vs_n_threads']")" = "True" ] || fail "thread check failed"
     ;;
   demo_runs_the_atlas_tree_on_railway)
-    "$tessera" demo -o demo --threads 2 --no-gl --no-thread-check --no-tab --no-rtta --railway "$src/data/railway.glb" > stdout.json
+    "$tessera" demo -o demo --threads 2 --no-gl --no-suite --no-thread-check --no-tab --no-rtta --railway "$src/data/railway.glb" > stdout.json
     for f in report.json index.html mta/render/plot.png mta/runs/runs.png mta/texel/histogram.png mta/render/frames.json; do
       [ -s "demo/$f" ] || fail "demo did not write $f"
     done
@@ -34,7 +34,7 @@ case "$case_name" in
       || fail "the demo's atlas tree magnifies beyond tau"
     ;;
   demo_runs_texture_array_batching_on_railway)
-    "$tessera" demo -o demo --threads 2 --no-gl --no-thread-check --no-mta --no-rtta --railway "$src/data/railway.glb" > stdout.json
+    "$tessera" demo -o demo --threads 2 --no-gl --no-suite --no-thread-check --no-mta --no-rtta --railway "$src/data/railway.glb" > stdout.json
     for f in report.json index.html tab/railway.tab tab/render/plot.png tab/render/index.html tab/render/frames.json \
              tab/render/batched_0012.png tab/render/baseline_0012.tframe tab/render/diff_0012.png; do
       [ -s "demo/$f" ] || fail "demo did not write $f"
@@ -45,7 +45,7 @@ case "$case_name" in
       || fail "the baseline does not draw each of the 33 meshes"
     ;;
   demo_runs_render_to_texture_atlas)
-    "$tessera" demo -o demo --threads 2 --no-gl --no-thread-check --no-mta --no-tab --railway "$src/data/railway.glb" > stdout.json
+    "$tessera" demo -o demo --threads 2 --no-gl --no-suite --no-thread-check --no-mta --no-tab --railway "$src/data/railway.glb" > stdout.json
     for f in report.json index.html rtta/five/index.html rtta/five/table.json rtta/five/rtta_0012.png rtta/five/atlas_l0_0012.png \
              rtta/five_ghosted/rtta_0001.png rtta/five_ghosted_ao/rtta_0001.png rtta/railway/rtta_0006.png rtta/railway/atlas_l0_0006.png; do
       [ -s "demo/$f" ] || fail "demo did not write $f"

@@ -21,6 +21,7 @@
 #include "tools/cli/gl_options.h"
 #include "tools/cli/mta_demo.h"
 #include "tools/cli/rtta_demo.h"
+#include "tools/cli/suite_demo.h"
 #include "tools/cli/tab_demo.h"
 #include "tools/cli/options.h"
 #include "tools/cli/output_directory.h"
@@ -38,6 +39,7 @@ struct DemoArgs {
   bool mta = true;
   bool tab = true;
   bool rtta = true;
+  bool suite = true;
   std::string railway = "data/railway.glb";
   ResourceLimits limits;  // the scenes' frames (the atlas tree's frames are small and keep the default)
   gl::GlOptions glOptions;  // --gl-driver, --gl-version, --egl-platform
@@ -163,6 +165,13 @@ void runDemo(const DemoArgs& a) {
     report["render_to_texture_atlas"] = r.report;
     mtaHtml += r.html;
   }
+  bool suitePassed = true;
+  if (a.suite) {
+    const SuiteDemoResult sd = runSuiteDemo(a.outDir, repoPath("suites/smoke.json"));
+    report["suite"] = sd.report;
+    mtaHtml += sd.html;
+    suitePassed = sd.allPassOrExpected;
+  }
   report["bit_identical_1_vs_n_threads"] = allAgree;
   if (glb) report["gl_every_pixel_explained"] = allExplained;
   writeTextFile(a.outDir + "/report.json", report.dump(2) + "\n");
@@ -178,6 +187,7 @@ void runDemo(const DemoArgs& a) {
   std::fprintf(stderr, "wrote %s/report.json and %s/index.html\n", a.outDir.c_str(), a.outDir.c_str());
   std::printf("%s\n", report.dump(2).c_str());
   if (glb && !allExplained) throw Error("demo: GL produced pixels the oracle cannot explain; see the crosscheck reports");
+  if (!suitePassed) throw Error("demo: the smoke suite's CPU cases did not all pass; see " + a.outDir + "/suite/index.html");
   if (!allAgree) throw Error("demo: some scene rendered different bytes at 1 thread than at " + std::to_string(threads));
 }
 
@@ -196,6 +206,7 @@ void addDemoCommand(CLI::App& app) {
   demo->add_flag("!--no-mta", a->mta, "Skip the atlas tree on railway.glb (build, render over the thesis path, runs, texel)");
   demo->add_flag("!--no-tab", a->tab, "Skip texture-array batching on railway.glb (build, render baseline and batched, compare)");
   demo->add_flag("!--no-rtta", a->rtta, "Skip render-to-texture-atlas (STD / RTT / RTTA on the five-object scene and railway.glb)");
+  demo->add_flag("!--no-suite", a->suite, "Skip the corpus run (the CPU cases of suites/smoke.json in child processes, 43 cases, under a minute)");
   demo->add_option("--railway", a->railway, "railway.glb, the real scene of the atlas tree and TAB demos (data/README.md)")->capture_default_str();
   demo->callback([a] {
     a->railway = repoPath(a->railway);  // found from the clone's root or beside the build folder

@@ -17,5 +17,6 @@ void addMtaRunsCommand(CLI::App* mtaCmd);    // mta runs (cmd_mta_runs.cpp)
 void addTexelCommand(CLI::App& app);         // texel (cmd_texel.cpp)
 void addTabCommands(CLI::App& app);          // tab build / info / render (cmd_tab.cpp)
 void addRttaCommands(CLI::App& app);         // rtta render / params (cmd_rtta.cpp)
+void addSuiteCommands(CLI::App& app);        // suite run / merge (cmd_suite.cpp)
 
 }  // namespace tessera::cli

@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   tessera::cli::addMtaCommands(app);
   tessera::cli::addTabCommands(app);
   tessera::cli::addRttaCommands(app);
+  tessera::cli::addSuiteCommands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {

@@ -1,0 +1,54 @@
+// Helpers of the suite tests: a scratch directory per test, writing files, and running `tessera`.
+#pragma once
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace tessera::cli::suite::test {
+
+inline std::string scratchDir(const std::string& name) {
+  const std::filesystem::path d =
+      std::filesystem::temp_directory_path() / ("tessera-suite-test-" + std::to_string(::getpid())) / name;
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d.string();
+}
+
+inline void writeText(const std::string& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;  // test input, not an output of the project
+}
+
+inline std::string readText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+struct Run {
+  int exitCode = -1;
+  std::string out, err;
+};
+
+// Runs `tessera <args>` through the shell with stdout and stderr captured to files beside `dir`.
+inline Run tessera(const std::string& args, const std::string& dir) {
+  const std::string out = dir + ".stdout", err = dir + ".stderr";
+  const std::string cmd = std::string("'") + TESSERA_BIN + "' " + args + " >'" + out + "' 2>'" + err + "'";
+  const int st = std::system(cmd.c_str());
+  Run r;
+  r.exitCode = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  r.out = readText(out), r.err = readText(err);
+  return r;
+}
+
+inline nlohmann::json readJson(const std::string& path) { return nlohmann::json::parse(readText(path)); }
+
+}  // namespace tessera::cli::suite::test
