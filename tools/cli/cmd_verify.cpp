@@ -1,5 +1,5 @@
 // `tessera crosscheck | visibility | compare | bench crosscheck`: the oracle checked against GL,
-// against Embree, and images against each other.
+// against Embree, and images against each other (`bench sweep`: bench_sweep.h).
 #include <tbb/info.h>
 
 #include <chrono>
@@ -15,6 +15,7 @@
 #include "raster/cpu_backend.h"
 #include "raster/serialize.h"
 #include "raster/validate.h"
+#include "tools/cli/bench_sweep.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/frame_job.h"
 #include "tools/cli/gl_options.h"
@@ -236,6 +237,7 @@ void addVerifyCommands(CLI::App& app) {
   bc->add_option("--repeat", ba->repeat, "Timed runs (median reported)")->check(CLI::Range(1, 1000));
   addGlBackendOptions(bc, ba->gl);
   bc->callback([ba] { runBench(*ba); });
+  addBenchSweepCommands(bench);
 }
 
 }  // namespace tessera::cli
