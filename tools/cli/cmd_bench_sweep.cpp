@@ -218,6 +218,26 @@ void runSweep(const SweepArgs& a) {
     }
   }
 
+  // Thread scaling: the 1-thread median over the n-thread median, per point and renderer (the goal
+  // is >= 1.85 at 2 threads).
+  nlohmann::json scaling = nlohmann::json::array();
+  if (std::find(threads.begin(), threads.end(), 1) != threads.end())
+    for (size_t i = 0; i < plan.size(); ++i)
+      for (int t : threads) {
+        if (t == 1) continue;
+        for (int r = 0; r < 3; ++r) {
+          if (r == 2 && a.noStrict) continue;
+          const double one = med.at({i, 1, r}), n = med.at({i, t, r});
+          nlohmann::json sj = {{"workload", plan[i].workload}, {"variant", plan[i].variant},
+                               {"width", plan[i].width},       {"height", plan[i].height}};
+          if (plan[i].workload == "tiny_tris") sj["triangles"] = plan[i].triangles;
+          sj["renderer"] = kRenderers[r];
+          sj["threads"] = t;
+          sj["speedup_vs_1_thread"] = n > 0 ? one / n : 0.0;
+          scaling.push_back(std::move(sj));
+        }
+      }
+
   const nlohmann::json& anyWorker = workers.begin()->second;
   nlohmann::json j = {
       {"quick", a.quick},
@@ -235,7 +255,8 @@ void runSweep(const SweepArgs& a) {
       {"gl_info", anyWorker["gl_info"]},
       {"points", points},
       {"fits", fits},
-      {"stages", stages}};
+      {"stages", stages},
+      {"scaling", scaling}};
   writeFileAtomically(a.out + "/sweep.json", j.dump(2));
   const verify::RgbaCanvas canvas = drawSweepPlot(panels);
   writePngRGBA8(a.out + "/sweep.png", canvas.width(), canvas.height(), canvas.data());
