@@ -428,8 +428,8 @@ struct GlBackend::Impl {
     glFinish();
     frame = {};
     if (started) {
-      const double wall = std::chrono::duration<double, std::milli>(Clock::now() - frameStart - inFrameResources).count();
-      frame.frameMs = std::max(0.0, wall);
+      const Clock::duration span = Clock::now() - frameStart - inFrameResources;
+      frame.frameMs = std::max(0.0, std::chrono::duration<double, std::milli>(span).count());
       frame.frameCpuMs = std::max(0.0, processCpuMs() - frameCpuStart - inFrameResourcesCpu);
     }
     if (const std::string errors = drainErrors(); !errors.empty())

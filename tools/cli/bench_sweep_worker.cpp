@@ -38,7 +38,8 @@ std::vector<SweepPoint> sweepPlan(bool quick) {
   const std::vector<std::string> variants = quick ? std::vector<std::string>{"trilinear"} : scenes::fillVariants();
   for (const std::string& v : variants)
     for (const auto& [w, h] : sizes) plan.push_back({"fill_layers", v, w, h, 0});
-  const std::vector<int> counts = quick ? std::vector<int>{1000, 10000} : std::vector<int>{1000, 10000, 100000, 1000000};
+  const std::vector<int> counts =
+      quick ? std::vector<int>{1000, 10000} : std::vector<int>{1000, 10000, 100000, 1000000};
   for (int n : counts) plan.push_back({"tiny_tris", "flat_color", kTrisWidth, kTrisHeight, n});
   return plan;
 }
@@ -130,8 +131,11 @@ void runWorker(const WorkerArgs& a) {
                  mode.c_str(), sg[sg.size() / 2]);
     points.push_back(std::move(o));
   }
-  const nlohmann::json j = {{"threads", a.threads}, {"gl_mode", mode},   {"repeat", a.repeat},
-                            {"gl_info", glb->info().toJson()}, {"points", points}};
+  const nlohmann::json j = {{"threads", a.threads},
+                            {"gl_mode", mode},
+                            {"repeat", a.repeat},
+                            {"gl_info", glb->info().toJson()},
+                            {"points", points}};
   writeFileAtomically(a.out, j.dump(1));
 }
 
@@ -146,7 +150,8 @@ void addSweepWorkerCommand(CLI::App* bench) {
   cmd->add_option("--out", a->out, "The JSON file of raw runs")->required();
   cmd->add_flag("--strict", a->strict, "llvmpipe fast paths off");
   cmd->add_flag("--quick", a->quick, "The quick plan");
-  cmd->add_flag("--stages", a->stages, "Also per point an oracle run with per-stage times (after a warm-up run), in a backend of its own");
+  cmd->add_flag("--stages", a->stages,
+                "Also per point an oracle run with per-stage times (after a warm-up run), in a backend of its own");
   addGlBackendOptions(cmd, a->gl);
   cmd->callback([a] { runWorker(*a); });
 }

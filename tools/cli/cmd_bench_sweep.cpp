@@ -10,11 +10,11 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <optional>
-#include <tuple>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <thread>
+#include <tuple>
 
 #include "base/atomic_file.h"
 #include "base/error.h"
@@ -34,9 +34,9 @@ namespace {
 struct SweepArgs {
   std::string out;
   bool quick = false, noStrict = false;
-  int repeat = 0;                // 0: 5, or 3 with --quick
-  std::vector<int> threads;      // empty: 1 and 2, or 1 with --quick
-  gl::GlOptions gl;              // --gl-driver, --gl-version, --egl-platform
+  int repeat = 0;            // 0: 5, or 3 with --quick
+  std::vector<int> threads;  // empty: 1 and 2, or 1 with --quick
+  gl::GlOptions gl;          // --gl-driver, --gl-version, --egl-platform
 };
 
 // Linear interpolation between order statistics (p in [0, 1]).
@@ -53,11 +53,13 @@ double quantile(std::vector<double> v, double p) {
 // returns its JSON.
 nlohmann::json runChild(const SweepArgs& a, const fs::path& tmp, int threads, bool strict, int repeat) {
   const fs::path out = tmp / fmt::format("worker_t{}_{}.json", threads, strict ? "strict" : "default");
-  std::vector<std::string> args = {"tessera", "bench",           "sweep-worker",          "--threads",
-                                   std::to_string(threads), "--repeat", std::to_string(repeat), "--out",
-                                   out.string()};
-  if (strict) args.push_back("--strict");
-  else args.push_back("--stages");  // the stage times come from the default child's oracle only
+  std::vector<std::string> args = {
+      "tessera", "bench",     "sweep-worker", "--threads", std::to_string(threads), "--repeat", std::to_string(repeat),
+      "--out",   out.string()};
+  if (strict)
+    args.push_back("--strict");
+  else
+    args.push_back("--stages");  // the stage times come from the default child's oracle only
   if (a.quick) args.push_back("--quick");
   if (!a.gl.driver.empty()) args.insert(args.end(), {"--gl-driver", a.gl.driver});
   if (a.gl.glVersion != 0) args.insert(args.end(), {"--gl-version", std::to_string(a.gl.glVersion)});
@@ -106,18 +108,22 @@ std::optional<std::pair<double, double>> fit(const std::vector<double>& x, const
   return std::make_pair(b * 1e6, my - b * mx);
 }
 
-std::string fmtMs(double v) { return v >= 100 ? fmt::format("{:.0f}", v) : v >= 10 ? fmt::format("{:.1f}", v) : fmt::format("{:.2f}", v); }
+std::string fmtMs(double v) {
+  return v >= 100 ? fmt::format("{:.0f}", v) : v >= 10 ? fmt::format("{:.1f}", v) : fmt::format("{:.2f}", v);
+}
 
 const char* const kRenderers[] = {"oracle", "llvmpipe", "llvmpipe_strict"};
 
 void runSweep(const SweepArgs& a) {
   prepareOutputDirectory(a.out, "-o");
   if (!fs::is_empty(a.out))
-    throw Error(a.out + ": the directory is not empty (-o names the output directory; bench sweep writes into an "
-                        "empty or new one)");
+    throw Error(a.out +
+                ": the directory is not empty (-o names the output directory; bench sweep writes into an "
+                "empty or new one)");
   const std::vector<SweepPoint> plan = sweepPlan(a.quick);
   const int repeat = a.repeat > 0 ? a.repeat : (a.quick ? 3 : 5);
-  const std::vector<int> threads = !a.threads.empty() ? a.threads : (a.quick ? std::vector<int>{1} : std::vector<int>{1, 2});
+  const std::vector<int> threads =
+      !a.threads.empty() ? a.threads : (a.quick ? std::vector<int>{1} : std::vector<int>{1, 2});
   std::string tmpl = (fs::temp_directory_path() / "tessera-sweep-XXXXXX").string();
   if (!mkdtemp(tmpl.data())) throw Error("bench sweep: cannot create a temporary directory under " + tmpl);
   const fs::path tmp = tmpl;
@@ -149,8 +155,11 @@ void runSweep(const SweepArgs& a) {
     for (int t : threads) {
       const nlohmann::json& dp = workers.at({t, false})["points"][i];
       const auto base = [&](const char* renderer) {
-        nlohmann::json j = {{"workload", p.workload}, {"variant", p.variant}, {"width", p.width},
-                            {"height", p.height},     {"pixels", int64_t(p.width) * p.height}};
+        nlohmann::json j = {{"workload", p.workload},
+                            {"variant", p.variant},
+                            {"width", p.width},
+                            {"height", p.height},
+                            {"pixels", int64_t(p.width) * p.height}};
         if (p.workload == "tiny_tris") j["triangles"] = p.triangles;
         j["threads"] = t;
         j["renderer"] = renderer;
@@ -207,8 +216,8 @@ void runSweep(const SweepArgs& a) {
           line.notes.push_back(r == 0 ? "" : fmt::format("{:.2f}", ratioOf.at({i, t, r})));
         }
         const auto f = fit(line.x, line.ms);
-        nlohmann::json fj = {{"workload", wl}, {"variant", var}, {"threads", t}, {"renderer", kRenderers[r]},
-                             {"points", line.x.size()}};
+        nlohmann::json fj = {
+            {"workload", wl}, {"variant", var}, {"threads", t}, {"renderer", kRenderers[r]}, {"points", line.x.size()}};
         fj[tris ? "ns_per_triangle" : "ns_per_pixel"] = f ? nlohmann::json(f->first) : nlohmann::json(nullptr);
         fj["intercept_ms"] = f ? nlohmann::json(f->second) : nlohmann::json(nullptr);
         fits.push_back(std::move(fj));
@@ -228,8 +237,10 @@ void runSweep(const SweepArgs& a) {
         for (int r = 0; r < 3; ++r) {
           if (r == 2 && a.noStrict) continue;
           const double one = med.at({i, 1, r}), n = med.at({i, t, r});
-          nlohmann::json sj = {{"workload", plan[i].workload}, {"variant", plan[i].variant},
-                               {"width", plan[i].width},       {"height", plan[i].height}};
+          nlohmann::json sj = {{"workload", plan[i].workload},
+                               {"variant", plan[i].variant},
+                               {"width", plan[i].width},
+                               {"height", plan[i].height}};
           if (plan[i].workload == "tiny_tris") sj["triangles"] = plan[i].triangles;
           sj["renderer"] = kRenderers[r];
           sj["threads"] = t;
@@ -249,9 +260,11 @@ void runSweep(const SweepArgs& a) {
        "(GL, GlBackend::lastFrameTimes); validation and resource commands excluded; median, p10, p90 of the timed "
        "runs after one warm-up; the renderers interleaved run by run in one process per thread count and llvmpipe "
        "mode; cpu_ms = getrusage user + system of the process over the frame (median)"},
-      {"ratio_meaning", "llvmpipe median / the median of the oracle runs interleaved with it: above 1, the oracle is faster"},
-      {"fit_meaning", "least squares ms = intercept_ms + slope * x over the points of a line; x = pixels of the target "
-                      "(fill_layers draws 4 full-screen layers) or triangles"},
+      {"ratio_meaning",
+       "llvmpipe median / the median of the oracle runs interleaved with it: above 1, the oracle is faster"},
+      {"fit_meaning",
+       "least squares ms = intercept_ms + slope * x over the points of a line; x = pixels of the target "
+       "(fill_layers draws 4 full-screen layers) or triangles"},
       {"gl_info", anyWorker["gl_info"]},
       {"points", points},
       {"fits", fits},
@@ -263,25 +276,27 @@ void runSweep(const SweepArgs& a) {
 
   // index.html: the table of points, the fits, the stage times and the plot.
   using verify::escapeHtml;
-  std::string h = "<!doctype html><meta charset=utf-8><title>tessera bench sweep</title>\n<style>body{font-family:sans-serif}"
-                  "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}"
-                  "th{background:#eee}</style>\n<h1>tessera bench sweep</h1>\n";
-  h += fmt::format("<p>{} timed runs per point after one warm-up; times in ms (median [p10, p90]); cpu = process CPU "
-                   "time over the frame (median); ratio = llvmpipe / oracle (above 1: the oracle is faster). {} "
-                   "hardware threads. See docs/bench.md for what is timed.</p>\n",
-                   repeat, std::thread::hardware_concurrency());
+  std::string h =
+      "<!doctype html><meta charset=utf-8><title>tessera bench sweep</title>\n<style>body{font-family:sans-serif}"
+      "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}"
+      "th{background:#eee}</style>\n<h1>tessera bench sweep</h1>\n";
+  h += fmt::format(
+      "<p>{} timed runs per point after one warm-up; times in ms (median [p10, p90]); cpu = process CPU "
+      "time over the frame (median); ratio = llvmpipe / oracle (above 1: the oracle is faster). {} "
+      "hardware threads. See docs/bench.md for what is timed.</p>\n",
+      repeat, std::thread::hardware_concurrency());
   h += "<table><tr><th>workload</th><th>variant</th><th>size</th><th>triangles</th><th>threads</th><th>renderer</th>"
        "<th>median</th><th>p10</th><th>p90</th><th>cpu</th><th>ratio</th></tr>\n";
   for (const nlohmann::json& p : points)
-    h += fmt::format("<tr><td>{}</td><td>{}</td><td>{}x{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>"
-                     "<td>{}</td><td>{}</td><td>{}</td></tr>\n",
-                     escapeHtml(p["workload"].get<std::string>()), escapeHtml(p["variant"].get<std::string>()),
-                     p["width"].get<int>(), p["height"].get<int>(),
-                     p.contains("triangles") ? std::to_string(p["triangles"].get<int>()) : "",
-                     p["threads"].get<int>(), escapeHtml(p["renderer"].get<std::string>()),
-                     fmtMs(p["median_ms"].get<double>()), fmtMs(p["p10_ms"].get<double>()),
-                     fmtMs(p["p90_ms"].get<double>()), fmtMs(p["cpu_ms"].get<double>()),
-                     p.contains("ratio") ? fmt::format("{:.2f}", p["ratio"].get<double>()) : "");
+    h += fmt::format(
+        "<tr><td>{}</td><td>{}</td><td>{}x{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>"
+        "<td>{}</td><td>{}</td><td>{}</td></tr>\n",
+        escapeHtml(p["workload"].get<std::string>()), escapeHtml(p["variant"].get<std::string>()),
+        p["width"].get<int>(), p["height"].get<int>(),
+        p.contains("triangles") ? std::to_string(p["triangles"].get<int>()) : "", p["threads"].get<int>(),
+        escapeHtml(p["renderer"].get<std::string>()), fmtMs(p["median_ms"].get<double>()),
+        fmtMs(p["p10_ms"].get<double>()), fmtMs(p["p90_ms"].get<double>()), fmtMs(p["cpu_ms"].get<double>()),
+        p.contains("ratio") ? fmt::format("{:.2f}", p["ratio"].get<double>()) : "");
   h += "</table>\n<h2>Fits</h2>\n<table><tr><th>workload</th><th>variant</th><th>threads</th><th>renderer</th>"
        "<th>ns per pixel / triangle</th><th>intercept ms</th></tr>\n";
   for (const nlohmann::json& f : fits) {
@@ -301,8 +316,8 @@ void runSweep(const SweepArgs& a) {
                      escapeHtml(s["workload"].get<std::string>()), escapeHtml(s["variant"].get<std::string>()),
                      s["width"].get<int>(), s["height"].get<int>(),
                      s.contains("triangles") ? std::to_string(s["triangles"].get<int>()) : "", s["threads"].get<int>());
-    for (const char* k : {"frame_ms", "vertex_ms", "clip_ms", "setup_ms", "bin_ms", "rast_ms", "shade_ms", "sample_ms",
-                          "fragops_ms"})
+    for (const char* k :
+         {"frame_ms", "vertex_ms", "clip_ms", "setup_ms", "bin_ms", "rast_ms", "shade_ms", "sample_ms", "fragops_ms"})
       h += "<td>" + fmtMs(s[k].get<double>()) + "</td>";
     h += "</tr>\n";
   }

@@ -147,8 +147,9 @@ void runBench(const BenchArgs& a) {
                             {"oracle_frame_ms", fo},
                             {"llvmpipe_frame_ms", fl},
                             {"frame_ratio", fo > 0 ? fl / fo : 0.0},
-                            {"frame_meaning", "the frame alone, without validation and resource commands (docs/bench.md); "
-                                              "oracle_ms and llvmpipe_ms time the whole execute()"},
+                            {"frame_meaning",
+                             "the frame alone, without validation and resource commands (docs/bench.md); "
+                             "oracle_ms and llvmpipe_ms time the whole execute()"},
                             {"oracle_runs_ms", oracle},
                             {"llvmpipe_runs_ms", llvmpipe},
                             {"gl_info", glb->info().toJson()}};

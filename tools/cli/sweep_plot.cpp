@@ -18,7 +18,7 @@ constexpr int kLeft = 70, kRight = 20, kTop = 40, kBottom = 50;
 const Rgba kBlack{0, 0, 0, 255}, kGrid{225, 225, 225, 255}, kMajor{190, 190, 190, 255};
 
 struct Axis {
-  int lo = 0, hi = 1;  // decades: 10^lo .. 10^hi
+  int lo = 0, hi = 1;                         // decades: 10^lo .. 10^hi
   double pos(double v, int a, int b) const {  // pixel between a (10^lo) and b (10^hi)
     const double t = (std::log10(v) - lo) / double(hi - lo);
     return a + t * (b - a);
@@ -70,7 +70,9 @@ void drawPanel(RgbaCanvas& c, int ox, int oy, const PlotPanel& p) {
   // when no other noted line is higher there, else below, so two renderers' notes at one x part.
   const auto px = [&](double v) { return int(std::lround(ax.pos(v, left, right))); };
   const auto py = [&](double v) { return int(std::lround(ay.pos(v, bottom, top))); };
-  const auto valid = [](const PlotLine& l, size_t i) { return i < l.x.size() && i < l.ms.size() && l.x[i] > 0 && l.ms[i] > 0; };
+  const auto valid = [](const PlotLine& l, size_t i) {
+    return i < l.x.size() && i < l.ms.size() && l.x[i] > 0 && l.ms[i] > 0;
+  };
   for (const PlotLine& l : p.lines) {
     bool have = false;
     int lx = 0, ly = 0;
