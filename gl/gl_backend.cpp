@@ -8,6 +8,7 @@
 #include <limits>
 #include <string>
 
+#include "base/cpu_time.h"
 #include "gl/egl_context.h"
 #include "gl/gl_api.h"
 #include "gl/gl_debug.h"
@@ -90,6 +91,7 @@ struct GlBackend::Impl {
 
   GlCallCounts counts;
   double ms = 0.0;
+  FrameTimes frame;
   std::vector<PresentedImage> presented;
 
   // The command being replayed, for error messages: "<frame>: command N (Kind)".
@@ -387,12 +389,49 @@ struct GlBackend::Impl {
     list = &cl;
     frameName = name;
     const auto& cmds = cl.commands();
+    // The frame's clock (FrameTimes): from the first command that is not a resource command, after a
+    // glFinish so the uploads before it are done, to the glFinish at the end; resource commands inside
+    // the frame are timed apart (after a glFinish before an upload, as the oracle flushes there), so
+    // the frame's time is the draws' and clears' whatever the list interleaves.
+    using Clock = std::chrono::steady_clock;
+    bool started = false;
+    Clock::time_point frameStart;
+    Clock::duration inFrameResources{};
+    double frameCpuStart = 0.0, inFrameResourcesCpu = 0.0;
     for (commandIndex = 0; commandIndex < cmds.size(); ++commandIndex) {
-      std::visit([&](const auto& c) { apply(cl, c); }, cmds[commandIndex]);
-      if (options.mutation) options.mutation->applyToState(cmds[commandIndex]);
+      const Command& cmd = cmds[commandIndex];
+      const bool resource = std::holds_alternative<CreateTexture>(cmd) || std::holds_alternative<UploadTexture>(cmd) ||
+                            std::holds_alternative<CreateBuffer>(cmd) || std::holds_alternative<UploadBuffer>(cmd) ||
+                            std::holds_alternative<CreateSampler>(cmd) || std::holds_alternative<CreateProgram>(cmd);
+      if (!resource && !started) {
+        glFinish();
+        started = true;
+        frameStart = Clock::now();
+        frameCpuStart = processCpuMs();
+      }
+      const bool timedApart = resource && started;
+      Clock::time_point t0;
+      double cpu0 = 0.0;
+      if (timedApart) {
+        if (std::holds_alternative<UploadTexture>(cmd) || std::holds_alternative<UploadBuffer>(cmd)) glFinish();
+        t0 = Clock::now();
+        cpu0 = processCpuMs();
+      }
+      std::visit([&](const auto& c) { apply(cl, c); }, cmd);
+      if (options.mutation) options.mutation->applyToState(cmd);
       if (options.debug) checkErrors();
+      if (timedApart) {
+        inFrameResources += Clock::now() - t0;
+        inFrameResourcesCpu += processCpuMs() - cpu0;
+      }
     }
     glFinish();
+    frame = {};
+    if (started) {
+      const Clock::duration span = Clock::now() - frameStart - inFrameResources;
+      frame.frameMs = std::max(0.0, std::chrono::duration<double, std::milli>(span).count());
+      frame.frameCpuMs = std::max(0.0, processCpuMs() - frameCpuStart - inFrameResourcesCpu);
+    }
     if (const std::string errors = drainErrors(); !errors.empty())
       throw Error(std::string(name) + ": GL reported " + errors +
                   " during the frame; GlOptions::debug names the command");
@@ -533,6 +572,7 @@ std::vector<uint8_t> GlBackend::readImage(const PresentedImage& image) const {
 
 const GlCallCounts& GlBackend::calls() const { return impl_->counts; }
 double GlBackend::lastExecuteMs() const { return impl_->ms; }
+const FrameTimes& GlBackend::lastFrameTimes() const { return impl_->frame; }
 
 size_t GlBackend::liveObjects() const {
   size_t n = impl_->res.liveObjects() + impl_->fbos.size() + impl_->compiler.objectCount() + (impl_->vao != 0);

@@ -6,7 +6,8 @@
 // oracle's semantics (docs/spec-choices.md); where GL leaves a choice open, the backend pins GL to
 // the oracle's choice (docs/gl-backend.md lists every such pin). Counts the GL calls it issues per
 // command kind (GlCallCounts), which equal the oracle's API counters for the same list.
-// Does not implement: comparison of images (the caller does that), timing beyond one execute.
+// Does not implement: comparison of images (the caller does that), timing beyond one execute (its
+// wall time, and the frame's own wall and CPU time without uploads, FrameTimes).
 //
 // Outputs: after execute(), the presented images are the colour attachments of the render target
 // bound when the list ends (every layer of a layered target), exactly as CpuBackend::presented().
@@ -99,6 +100,18 @@ struct GlImageDesc {
   uint32_t width = 0, height = 0;
 };
 
+// What the last execute() spent on the frame itself (docs/bench.md): the counterpart of the oracle's
+// StageTimes::frameMs. The clock starts at the first command that is not a resource command
+// (CreateTexture, UploadTexture, CreateBuffer, UploadBuffer, CreateSampler, CreateProgram), after a
+// glFinish so the uploads before it are complete, and stops after the final glFinish; resource
+// commands inside the frame are timed apart and left out (an upload after a glFinish, as the oracle
+// flushes before one). Validation, the uploads before the frame and the deletion of the frame's
+// objects are outside. frameCpuMs is the process's CPU time (getrusage, every thread: llvmpipe's
+// rasterizer threads included) over the same span. Both 0 for a list of resource commands only.
+struct FrameTimes {
+  double frameMs = 0.0, frameCpuMs = 0.0;
+};
+
 class GlBackend {
  public:
   // Sets the environment from `options`, creates the EGL context and compiles nothing yet (twins
@@ -130,6 +143,8 @@ class GlBackend {
   const GlCallCounts& calls() const;
   // Wall time of the last execute(), validation and glFinish included (like the oracle's oracle_ms).
   double lastExecuteMs() const;
+  // The frame alone of the last execute() (FrameTimes above), for benchmarks.
+  const FrameTimes& lastFrameTimes() const;
   // GL object names the backend holds right now (textures, buffers, samplers, framebuffers,
   // programs, vertex arrays, cached shaders); for leak tests.
   size_t liveObjects() const;

@@ -549,6 +549,52 @@ PY
     refused 2 "only a .tframe input can be compared" "$tessera" texel tree.mta --against small.tframe -o r
     [ ! -e r ] || fail "bad input left an output directory behind"
     ;;
+  bench_sweep_quick_writes_json_plot_and_page)
+    # Structure only: no time is asserted (docs/bench.md), only that every point, fit and stage row is there.
+    "$tessera" bench sweep --help | grep -qF -- "--quick" || fail "bench sweep --help lacks --quick"
+    "$tessera" bench sweep --quick -o sweep > stdout.txt 2> progress.txt
+    grep -qF "bench sweep: [1 thread, llvmpipe_strict] 4/4 tiny_tris 10000 tris" progress.txt \
+      || fail "no progress on stderr: $(cat progress.txt)"
+    for f in sweep.json sweep.png index.html; do [ -s "sweep/$f" ] || fail "bench sweep did not write $f"; done
+    [ "$(head -c 4 sweep/sweep.png | tail -c 3)" = "PNG" ] || fail "sweep.png is not a PNG"
+    python3 - sweep/sweep.json <<'PY' || fail "sweep.json has the wrong structure"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["quick"] is True and d["threads"] == [1] and d["repeat"] == 3
+pts = d["points"]
+# 2 fill_layers sizes + 2 triangle counts, 1 thread, 3 renderers, in plan order then renderer order.
+assert len(pts) == 12, len(pts)
+want = [("fill_layers", 320, 240, None), ("fill_layers", 640, 480, None), ("tiny_tris", 1280, 720, 1000),
+        ("tiny_tris", 1280, 720, 10000)]
+for i, p in enumerate(pts):
+    wl, w, h, tris = want[i // 3]
+    assert (p["workload"], p["width"], p["height"], p.get("triangles")) == (wl, w, h, tris), p
+    assert p["renderer"] == ["oracle", "llvmpipe", "llvmpipe_strict"][i % 3], p
+    assert p["threads"] == 1 and p["pixels"] == w * h and len(p["runs_ms"]) == 3
+    assert p["p10_ms"] <= p["median_ms"] <= p["p90_ms"], p  # quantiles of the same runs, in order
+    for k in ("median_ms", "p10_ms", "p90_ms", "cpu_ms"):
+        assert isinstance(p[k], (int, float)) and p[k] >= 0, (k, p)
+    assert ("ratio" in p) == (p["renderer"] != "oracle"), p
+fits = d["fits"]
+assert [(f["workload"], f["renderer"]) for f in fits] == [
+    ("fill_layers", "oracle"), ("fill_layers", "llvmpipe"), ("fill_layers", "llvmpipe_strict"),
+    ("tiny_tris", "oracle"), ("tiny_tris", "llvmpipe"), ("tiny_tris", "llvmpipe_strict")], fits
+for f in fits:
+    key = "ns_per_triangle" if f["workload"] == "tiny_tris" else "ns_per_pixel"
+    assert key in f and f["points"] == 2 and "intercept_ms" in f, f
+stages = d["stages"]
+assert len(stages) == 4, stages
+for s in stages:
+    for k in ("frame_ms", "vertex_ms", "clip_ms", "setup_ms", "bin_ms", "rast_ms", "shade_ms", "sample_ms", "fragops_ms"):
+        assert s[k] >= 0, (k, s)
+assert "llvmpipe" in json.dumps(d["gl_info"]).lower()
+PY
+    grep -qF "Oracle stage times" sweep/index.html || fail "index.html lacks the stage table"
+    grep -qF 'src="sweep.png"' sweep/index.html || fail "index.html does not show the plot"
+    # A directory that is not empty is refused before any work, and stays as it was.
+    refused 2 "not empty" "$tessera" bench sweep --quick -o sweep
+    [ "$(ls sweep | wc -l)" = 3 ] || fail "the refused run changed the directory"
+    ;;
   *) fail "unknown case $case_name" ;;
 esac
 echo "ok: $case_name"

@@ -485,6 +485,21 @@ TEST(GlBackend, AFrameKeepsOnlyItsPresentedTexturesAndTheCompiledShaders) {
   EXPECT_EQ(gl().liveObjects(), after1 - 1);
 }
 
+// FrameTimes (gl_backend.h): the frame clock starts at the first command that is not a resource
+// command, so a list of uploads only has no frame, whatever the frame before it took.
+TEST(GlBackend, AListOfResourceCommandsOnlyHasNoFrameTime) {
+  REQUIRE_GL();
+  gl().execute(scenes::build("fill_fan", 64, 48), "fill_fan");
+  CommandList uploads;
+  TextureDesc d;
+  d.width = d.height = 4;
+  const ResourceId tex = uploads.createTexture(d);
+  uploads.uploadTexture(tex, 0, 0, std::vector<uint8_t>(64, 7));
+  gl().execute(uploads, "uploads");
+  EXPECT_EQ(gl().lastFrameTimes().frameMs, 0.0);
+  EXPECT_EQ(gl().lastFrameTimes().frameCpuMs, 0.0);
+}
+
 TEST(GlBackend, AnInvalidListIsRefusedWithTheOraclesValidationError) {
   REQUIRE_GL();
   CommandList cl;
