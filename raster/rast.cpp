@@ -100,7 +100,8 @@ class TriangleRasterizer {
         lateDepth_(ds_.program->writesDepth()) {
     const TargetView& tv = scene.target;
     depth_ = Plane::of(tv.depth, tv.level, t.layer);
-    for (int a = 0; a < kMaxColorAttachments; ++a) color_[a] = Plane::of(tv.color[size_t(a)], tv.level, t.layer);
+    // Only the attachments the program writes are ever addressed (flush() loops to colorOutputs).
+    for (int a = 0; a < ds_.colorOutputs; ++a) color_[a] = Plane::of(tv.color[size_t(a)], tv.level, t.layer);
   }
 
   void run(const TileRect& tile) {
