@@ -4,6 +4,9 @@ set -euo pipefail
 case_name=$1; tessera=$2; work=$3/$1
 src=$(cd "$(dirname "$0")/../.." && pwd)
 rm -rf "$work"; mkdir -p "$work"; cd "$work"
+# A passing case removes its work directory: the demo and atlas-tree cases write hundreds of MB, and
+# two builds' worth of them filled the disk of a CI machine (stop 21). A failing case keeps it to look at.
+trap 'rc=$?; cd /; if [ $rc = 0 ]; then rm -rf "$work"; else echo "kept for inspection: $work" >&2; fi' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
 json_field() { python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print(eval('d'+sys.argv[2]))" "$1" "$2"; }
 # refused STATUS TEXT COMMAND...: COMMAND exits with STATUS, says TEXT on stderr, and is no internal error.

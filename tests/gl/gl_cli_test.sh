@@ -8,6 +8,8 @@ set -euo pipefail
 case_name=$1; tessera=$2; work=$3/$1
 here=$(cd "$(dirname "$0")" && pwd)
 rm -rf "$work"; mkdir -p "$work"; cd "$work"
+# A passing (or skipped) case removes its work directory; a failing one keeps it (tests/cli/cli_test.sh).
+trap 'rc=$?; cd /; if [ $rc = 0 ] || [ $rc = 77 ]; then rm -rf "$work"; else echo "kept for inspection: $work" >&2; fi' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
 json_field() { python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print(eval('d'+sys.argv[2]))" "$1" "$2"; }
 # softpipe_or_skip COMMAND...: runs COMMAND into out.json; exits 77 when softpipe is missing.

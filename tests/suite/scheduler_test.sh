@@ -5,6 +5,8 @@
 set -euo pipefail
 case_name=$1 tessera=$2 src=$3 work=$4/$1
 rm -rf "$work" && mkdir -p "$work"
+# A passing case removes its work directory; a failing one keeps it (tests/cli/cli_test.sh).
+trap 'rc=$?; cd /; if [ $rc = 0 ]; then rm -rf "$work"; else echo "kept for inspection: $work" >&2; fi' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
 
 # Five cases of the test-only subcommand (a few ms each), one of which fails: shard results differ.
