@@ -8,15 +8,32 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 
 namespace tessera::cli::suite::test {
 
+inline std::filesystem::path scratchRoot() {
+  return std::filesystem::temp_directory_path() / ("tessera-suite-test-" + std::to_string(::getpid()));
+}
+
+// Removes this process's scratch root after the last test when every test passed, and keeps it for
+// inspection when one failed: ctest runs each test in its own process, so without this every run
+// left a directory per test in /tmp.
+class ScratchCleanup : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    if (!::testing::UnitTest::GetInstance()->Passed()) return;
+    std::error_code ec;
+    std::filesystem::remove_all(scratchRoot(), ec);
+  }
+};
+inline ::testing::Environment* const kScratchCleanup = ::testing::AddGlobalTestEnvironment(new ScratchCleanup);
+
 inline std::string scratchDir(const std::string& name) {
-  const std::filesystem::path d =
-      std::filesystem::temp_directory_path() / ("tessera-suite-test-" + std::to_string(::getpid())) / name;
+  const std::filesystem::path d = scratchRoot() / name;
   std::filesystem::remove_all(d);
   std::filesystem::create_directories(d);
   return d.string();
