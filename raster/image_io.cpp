@@ -57,6 +57,10 @@ void writeImage(const TextureData& tex, uint32_t level, uint32_t layer, const st
     // into PNG and the file would no longer match image_sha256.
     spec.attribute("oiio:UnassociatedAlpha", 1);
   }
+  // OIIO's OpenEXR writer stamps the current time as "DateTime" unless the spec names one, and an
+  // empty value means none. Without this the same frame gave different EXR bytes on every run, so a
+  // file hash could not stand for the frame as the PNGs' hashes do.
+  spec.attribute("DateTime", "");
   writeAtomically(path, spec, px.data());
 }
 

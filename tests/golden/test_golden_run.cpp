@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "base/sha256.h"
 #include "golden/golden_diff.h"
@@ -109,6 +111,26 @@ TEST(GoldenDiff, EachOtherKindOfMismatchHasItsReason) {
   e.imageSha256 = std::string(64, '0');
   EXPECT_EQ(golden::diffAgainstGolden(dir.str(), &e, pixels, Format::RGBA8).reason,
             "manifest hash differs from the image");
+}
+
+TEST(ImageFiles, AnExrOfTheSameImageHasTheSameBytesWhenWrittenAgainLater) {
+  TempDir dir("exr-bytes");
+  TextureDesc d;
+  d.width = 4;
+  d.height = 3;
+  d.format = Format::R32UI;
+  TextureData t(d);
+  for (size_t i = 0; i < t.levels[0].size(); ++i) t.levels[0][i] = uint8_t(7 * i);
+  const std::string a = dir.str() + "/images/a.exr", b = dir.str() + "/images/b.exr";
+  writeImage(t, 0, 0, a);
+  ::sleep(1);  // the writer's clock has second resolution
+  writeImage(t, 0, 0, b);
+  const auto bytes = [](const std::string& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_EQ(bytes(a), bytes(b));
+  EXPECT_EQ(bytes(a).find("DateTime"), std::string::npos);
 }
 
 TEST(GoldenRun, UpdateRecreatesTheShippedEntriesAndCheckThenReportsEachKindOfDifference) {
