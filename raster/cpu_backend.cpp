@@ -33,9 +33,20 @@ void Scene::begin(const TargetView& t) {
 
 void Scene::reset() {
   states.clear();
-  tris.clear();
+  for (auto& b : triBlocks) {
+    b.clear();
+    spareBlocks.push_back(std::move(b));
+  }
+  triBlocks.clear();
   clears.clear();
   for (auto& b : bins) b.clear();
+}
+
+std::vector<TriSetup> Scene::takeSpareBlock() {
+  if (spareBlocks.empty()) return {};
+  std::vector<TriSetup> b = std::move(spareBlocks.back());
+  spareBlocks.pop_back();
+  return b;
 }
 
 void PipelineStats::add(const PipelineStats& o) {
@@ -69,6 +80,9 @@ Rect intersect(const Rect& a, const Rect& b) {
 constexpr size_t kVertexChunk = 1024;
 // Triangles set up per parallel task.
 constexpr size_t kSetupChunk = 256;
+// A chunk's output is one block of Scene::triBlocks, addressed by the 16-bit TileCmd::slot: clipping
+// turns one triangle into at most kMaxClipPolygon - 2.
+static_assert(kSetupChunk * (kMaxClipPolygon - 2) <= 65536, "TileCmd::slot cannot address a chunk's block");
 
 }  // namespace
 
@@ -193,7 +207,7 @@ struct CpuBackend::Impl {
     // Bin into every tile the rectangle touches, in order with the triangles.
     for (int32_t ty = r.y >> kTileOrder; ty <= (r.y + r.h - 1) >> kTileOrder; ++ty)
       for (int32_t tx = r.x >> kTileOrder; tx <= (r.x + r.w - 1) >> kTileOrder; ++tx)
-        scene.bins[size_t(ty) * size_t(scene.tilesX) + size_t(tx)].push_back({op, index});
+        scene.bins[size_t(ty) * size_t(scene.tilesX) + size_t(tx)].push_back({op, 0, index});
   }
 
   std::unique_ptr<DrawState> snapshot() {

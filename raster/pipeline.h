@@ -76,7 +76,8 @@ enum EdgeKind : uint8_t {
 enum class TileOp : uint8_t { Triangle, ClearColor, ClearDepth };
 struct TileCmd {
   TileOp op;
-  uint32_t index;  // into Scene::tris or Scene::clears
+  uint16_t slot;   // Triangle: the triangle's place in its block (Scene::triBlocks)
+  uint32_t index;  // Triangle: the block, Scene::triBlocks; clears: Scene::clears
 };
 
 struct ClearCmd {
@@ -101,7 +102,11 @@ struct Scene {
   double edgeMarginSub = 0.0;  // provenance: tolerance::edgeMarginSub of the judged implementation
   double vertexSnapPx = 0.0;   // provenance: tolerance::vertexSnapPx of the judged implementation
   std::vector<std::unique_ptr<DrawState>> states;
-  std::vector<TriSetup> tris;
+  // The set-up triangles, in blocks: one block is one setup sink's output (setup.h), moved in whole
+  // rather than copied, since a TriSetup is about 460 bytes and a setup-bound frame has millions.
+  // reset() returns the blocks to `spareBlocks` with their capacity, so steady frames allocate nothing.
+  std::vector<std::vector<TriSetup>> triBlocks;
+  std::vector<std::vector<TriSetup>> spareBlocks;
   std::vector<ClearCmd> clears;
   int32_t tilesX = 0, tilesY = 0;
   std::vector<std::vector<TileCmd>> bins;
@@ -110,8 +115,11 @@ struct Scene {
   std::vector<LodMap>* lod = nullptr;
 
   void begin(const TargetView& t);
-  bool empty() const { return tris.empty() && clears.empty(); }
+  bool empty() const { return triBlocks.empty() && clears.empty(); }
   void reset();
+  const TriSetup& tri(const TileCmd& c) const { return triBlocks[c.index][c.slot]; }
+  // An empty block for a setup sink to fill: a spare one (with capacity) when there is one.
+  std::vector<TriSetup> takeSpareBlock();
 };
 
 // Counters of what the pipeline did (deterministic: integer sums, independent of threads).

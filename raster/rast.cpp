@@ -313,10 +313,10 @@ void rasterizeTile(const Scene& scene, size_t tileIndex, RastScratch& scratch, P
     switch (cmd.op) {
       case TileOp::Triangle: {
         if (scene.provenance) {
-          rasterizeTriangleProvenance(scene, scene.tris[cmd.index], tile, stats);
+          rasterizeTriangleProvenance(scene, scene.tri(cmd), tile, stats);
           break;
         }
-        TriangleRasterizer r(scene, scene.tris[cmd.index], scratch, stats);
+        TriangleRasterizer r(scene, scene.tri(cmd), scratch, stats);
         r.run(tile);
         break;
       }

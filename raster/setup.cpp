@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -190,16 +191,20 @@ inline double clipVertexErrorSub(const double pos[4], double mag, const Rect& vp
 
 }  // namespace
 
-void appendToScene(const SetupSink& sink, Scene& scene, PipelineStats& stats) {
-  const uint32_t base = uint32_t(scene.tris.size());
-  scene.tris.insert(scene.tris.end(), sink.tris.begin(), sink.tris.end());
+void appendToScene(SetupSink& sink, Scene& scene, PipelineStats& stats) {
+  stats.add(sink.stats);
+  const size_t count = sink.tris.size();
+  if (count == 0) return;
+  assert(count <= size_t(UINT16_MAX) + 1);  // TileCmd::slot; cpu_backend.cpp bounds a chunk's output
+  const uint32_t block = uint32_t(scene.triBlocks.size());
+  scene.triBlocks.push_back(std::move(sink.tris));
+  sink.tris = scene.takeSpareBlock();
   uint32_t begin = 0;
-  for (size_t i = 0; i < sink.tris.size(); ++i) {
+  for (size_t i = 0; i < count; ++i) {
     for (uint32_t k = begin; k < sink.tileEnd[i]; ++k)
-      scene.bins[sink.tiles[k]].push_back({TileOp::Triangle, base + uint32_t(i)});
+      scene.bins[sink.tiles[k]].push_back({TileOp::Triangle, uint16_t(i), block});
     begin = sink.tileEnd[i];
   }
-  stats.add(sink.stats);
 }
 
 void setupTriangle(const VertexOut (&v)[3], uint32_t primitiveId, uint32_t layer, const SetupParams& params,
