@@ -1,4 +1,6 @@
-// Oracle frame time per built-in scene, at 1 and 2 threads, and the city block at 1280x720.
+// Oracle frame time per built-in scene, at 1 and 2 threads, the city block at 1280x720 and 1920x1080,
+// and two `tessera bench sweep` workloads (tiny_tris_100k / tiny_tris_1m: setup- and bin-bound;
+// fill_layers_720p: fill-bound), so one stage's change can be timed without the whole sweep.
 // Run: build/bench_raster [--benchmark_filter=city] ; items/s = shaded fragments per second.
 //
 // The time of an iteration is the frame only (StageTimes::frameMs: the draws and clears through the
@@ -15,14 +17,14 @@
 
 #include "raster/cpu_backend.h"
 #include "tools/scenes/scenes.h"
+#include "tools/scenes/sweep_scenes.h"
 
 using namespace tessera;
 
 static bool g_stages = false;
 static bool g_provenance = false;
 
-static void renderScene(benchmark::State& state, std::string_view name, int w, int h) {
-  const CommandList list = scenes::build(name, w, h);
+static void renderList(benchmark::State& state, const std::string& name, const CommandList& list) {
   uint64_t fragments = 0;
   double constructMs = 0, validateMs = 0, resourcesMs = 0;
   StageTimes sum;
@@ -59,6 +61,18 @@ static void renderScene(benchmark::State& state, std::string_view name, int w, i
   }
 }
 
+static void renderScene(benchmark::State& state, std::string_view name, int w, int h) {
+  renderList(state, std::string(name), scenes::build(name, w, h));
+}
+
+static void renderTinyTris(benchmark::State& state, int triangles) {
+  renderList(state, "tiny_tris", scenes::buildTinyTris(1280, 720, triangles));
+}
+
+static void renderFillLayers(benchmark::State& state, int w, int h) {
+  renderList(state, "fill_layers", scenes::buildFillLayers(w, h, "trilinear"));
+}
+
 static void registerAll() {
   for (const scenes::SceneInfo& s : scenes::all())
     benchmark::RegisterBenchmark(std::string(s.name).c_str(), renderScene, s.name, s.width, s.height)
@@ -66,6 +80,12 @@ static void registerAll() {
   benchmark::RegisterBenchmark("city_block_720p", renderScene, "city_block", 1280, 720)
       ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseManualTime();
   benchmark::RegisterBenchmark("city_block_1080p", renderScene, "city_block", 1920, 1080)
+      ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseManualTime();
+  benchmark::RegisterBenchmark("tiny_tris_100k", renderTinyTris, 100000)
+      ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseManualTime();
+  benchmark::RegisterBenchmark("tiny_tris_1m", renderTinyTris, 1000000)
+      ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseManualTime();
+  benchmark::RegisterBenchmark("fill_layers_720p", renderFillLayers, 1280, 720)
       ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseManualTime();
 }
 
