@@ -9,6 +9,8 @@
 #include <chrono>
 #include <cstring>
 #include <map>
+#include <memory>
+#include <type_traits>
 
 #include "raster/depth_signature.h"
 #include "raster/provenance.h"
@@ -28,7 +30,7 @@ void Scene::begin(const TargetView& t) {
   target = t;
   tilesX = (t.width + kTileSize - 1) / kTileSize;
   tilesY = (t.height + kTileSize - 1) / kTileSize;
-  bins.assign(size_t(tilesX) * size_t(tilesY), {});
+  bins.resize(size_t(tilesX) * size_t(tilesY));  // reset() emptied them; their capacity stays for reuse
 }
 
 void Scene::reset() {
@@ -84,6 +86,23 @@ constexpr size_t kSetupChunk = 256;
 // turns one triangle into at most kMaxClipPolygon - 2.
 static_assert(kSetupChunk * (kMaxClipPolygon - 2) <= 65536, "TileCmd::slot cannot address a chunk's block");
 
+// A per-draw array kept across draws and left uninitialised: every element a draw reads, the draw has
+// written first. A std::vector of the same size zero-filled it on the calling thread, which for a
+// setup-bound draw (300k vertices, 80 MB of VertexIn + VertexOut) cost more than the whole pipeline.
+template <class T>
+struct ReusedArray {
+  static_assert(std::is_trivially_default_constructible_v<T>);
+  std::unique_ptr<T[]> data;
+  size_t capacity = 0;
+  T* get(size_t n) {
+    if (n > capacity) {
+      data.reset(new T[n]);  // default-initialised: no stores, no page touched here
+      capacity = n;
+    }
+    return data.get();
+  }
+};
+
 }  // namespace
 
 struct CpuBackend::Impl {
@@ -116,6 +135,9 @@ struct CpuBackend::Impl {
   Scene scene;
   PipelineStats stats;
   std::vector<SetupSink> sinks;  // reused across draws
+  ReusedArray<uint32_t> drawIndices;
+  ReusedArray<VertexIn> drawIn;
+  ReusedArray<VertexOut> drawOut;
   tbb::enumerable_thread_specific<RastScratch> scratch;
   StageTimes times;
   uint64_t binTicks = 0;  // appendToScene runs on the calling thread
@@ -309,20 +331,21 @@ struct CpuBackend::Impl {
     // Vertex indices of the draw, then the distinct vertices to shade. Shading every index of the
     // draw's range keeps the vertex stage a pure function of the index.
     const uint32_t n = triCount * 3;
-    std::vector<uint32_t> idx(n);
+    uint32_t* const idx = drawIndices.get(n);
     for (uint32_t i = 0; i < n; ++i) idx[i] = d.indexed ? readIndex(d.first + i) : d.first + i;
     uint32_t lo = idx[0], hi = idx[0];
-    for (uint32_t v : idx) lo = std::min(lo, v), hi = std::max(hi, v);
+    for (uint32_t i = 0; i < n; ++i) lo = std::min(lo, idx[i]), hi = std::max(hi, idx[i]);
     const bool dense = uint64_t(hi - lo) + 1 <= uint64_t(n) * 2;
     const size_t shadeCount = dense ? size_t(hi - lo) + 1 : size_t(n);
-    std::vector<VertexIn> in(shadeCount);
-    std::vector<VertexOut> out(shadeCount);
+    // Written in full below: fetchVertex sets every attribute and the id, `out` is zeroed per chunk.
+    VertexIn* const in = drawIn.get(shadeCount);
+    VertexOut* const out = drawOut.get(shadeCount);
     const bool timing = scene.timeStages;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, shadeCount, kVertexChunk), [&](const tbb::blocked_range<size_t>& r) {
       const uint64_t t0 = timing ? stageClock() : 0;
       for (size_t i = r.begin(); i != r.end(); ++i) fetchVertex(dense ? lo + uint32_t(i) : idx[i], in[i]);
-      std::span<const VertexIn> ins(in.data() + r.begin(), r.size());
-      std::span<VertexOut> outs(out.data() + r.begin(), r.size());
+      std::span<const VertexIn> ins(in + r.begin(), r.size());
+      std::span<VertexOut> outs(out + r.begin(), r.size());
       for (VertexOut& o : outs) std::memset(&o, 0, sizeof o);
       ds.program->shadeVertices(ins, outs, ds.ctx);
       if (timing) scratch.local().ticks.t[kStageVertex] += stageClock() - t0;
@@ -342,6 +365,11 @@ struct CpuBackend::Impl {
     // thread count (setup of one triangle never reads another's).
     const size_t chunks = (size_t(triCount) + kSetupChunk - 1) / kSetupChunk;
     if (sinks.size() < chunks) sinks.resize(chunks);
+    // A sink whose block went into the scene gets a spare one, with the capacity of an earlier flush
+    // or frame, so a steady sequence of frames allocates no triangle storage (serial: the spares are
+    // shared).
+    for (size_t c = 0; c < chunks; ++c)
+      if (sinks[c].tris.capacity() == 0) sinks[c].tris = scene.takeSpareBlock();
     tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
       const uint64_t setup0 = timing ? stageClock() : 0;
       for (size_t c = r.begin(); c != r.end(); ++c) {
@@ -392,6 +420,19 @@ struct CpuBackend::Impl {
       for (size_t c = 0; c < chunks; ++c) clip += sinks[c].clipTicks;
       scratch.local().ticks.t[kStageClip] += clip;
     }
+  }
+
+  // Takes over the capacity of an earlier frame's backend: the spare triangle blocks, the emptied
+  // bins, the setup sinks and the per-draw vertex arrays. Only memory moves, no state: every one of
+  // them is cleared or overwritten before it is read, so the frame renders as on a new backend.
+  void adoptCapacity(Impl& old) {
+    old.scene.reset();
+    scene.spareBlocks = std::move(old.scene.spareBlocks);
+    scene.bins = std::move(old.scene.bins);
+    sinks = std::move(old.sinks);
+    drawIndices = std::move(old.drawIndices);
+    drawIn = std::move(old.drawIn);
+    drawOut = std::move(old.drawOut);
   }
 
   bool executed = false;
@@ -490,9 +531,10 @@ void CpuBackend::execute(const CommandList& list, std::string_view frameName) {
   // A list is a whole frame that starts from GL's initial state (command_list.h): nothing of an earlier
   // execute() may leak into it, so a backend reused for a sequence of frames starts afresh each time.
   if (impl_->executed) {
-    const RenderOptions options = impl_->options;
-    impl_ = std::make_unique<Impl>();
-    impl_->options = options;
+    auto next = std::make_unique<Impl>();
+    next->options = impl_->options;
+    next->adoptCapacity(*impl_);  // memory only: a sequence of frames does not pay first-touch pages again
+    impl_ = std::move(next);
   }
   impl_->executed = true;
   const int threads = impl_->options.threads > 0 ? impl_->options.threads : tbb::this_task_arena::max_concurrency();

@@ -119,6 +119,7 @@ struct Scene {
   void reset();
   const TriSetup& tri(const TileCmd& c) const { return triBlocks[c.index][c.slot]; }
   // An empty block for a setup sink to fill: a spare one (with capacity) when there is one.
+  // Draws hand them to their sinks before setup (cpu_backend.cpp).
   std::vector<TriSetup> takeSpareBlock();
 };
 

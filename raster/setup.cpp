@@ -5,6 +5,7 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "raster/stage_times.h"
 #include "raster/tolerances.h"
@@ -197,8 +198,7 @@ void appendToScene(SetupSink& sink, Scene& scene, PipelineStats& stats) {
   if (count == 0) return;
   assert(count <= size_t(UINT16_MAX) + 1);  // TileCmd::slot; cpu_backend.cpp bounds a chunk's output
   const uint32_t block = uint32_t(scene.triBlocks.size());
-  scene.triBlocks.push_back(std::move(sink.tris));
-  sink.tris = scene.takeSpareBlock();
+  scene.triBlocks.push_back(std::exchange(sink.tris, {}));
   uint32_t begin = 0;
   for (size_t i = 0; i < count; ++i) {
     for (uint32_t k = begin; k < sink.tileEnd[i]; ++k)

@@ -47,7 +47,7 @@ void setupTriangle(const VertexOut (&v)[3], uint32_t primitiveId, uint32_t layer
                    SetupSink& sink);
 
 // Appends a sink's triangles to the scene and its bins, in order, and adds its stats. The triangles
-// move into the scene as one block (Scene::triBlocks); the sink gets a spare block in exchange.
+// move into the scene as one block (Scene::triBlocks), leaving the sink's vector empty.
 void appendToScene(SetupSink& sink, Scene& scene, PipelineStats& stats);
 
 // Round half to even of a finite double with |v| < 2^62 to int64 (the snapping and unorm conversion
