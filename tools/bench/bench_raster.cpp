@@ -1,5 +1,5 @@
 // Oracle frame time per built-in scene, at 1 and 2 threads, the city block at 1280x720 and 1920x1080,
-// and two `tessera bench sweep` workloads (tiny_tris_100k / tiny_tris_1m: setup- and bin-bound;
+// and two `tessera bench sweep` workloads (tiny_tris_100k / tiny_tris_1m: setup-bound;
 // fill_layers_720p: fill-bound), so one stage's change can be timed without the whole sweep.
 // Run: build/bench_raster [--benchmark_filter=city] ; items/s = shaded fragments per second.
 //
