@@ -51,6 +51,14 @@ void setTextureMatrix(CommandList& cl, float s) {
 RecordedFrame recordFrame(const MtaMeta& meta, const RuntimeGeometry& geometry, const FramePlan& plan, const ViewParams& view,
                           TextureCache& textures, const RecordParams& params) {
   RecordedFrame f;
+  recordFrame(meta, geometry, plan, view, textures, params, f);
+  return f;
+}
+
+void recordFrame(const MtaMeta& meta, const RuntimeGeometry& geometry, const FramePlan& plan, const ViewParams& view,
+                 TextureCache& textures, const RecordParams& params, RecordedFrame& f) {
+  f.list.clear();
+  f.drawTexture.clear();
   CommandList& cl = f.list;
   const int w = int(params.width), h = int(params.height);
   auto target = [&](Format fmt) {
@@ -86,7 +94,7 @@ RecordedFrame recordFrame(const MtaMeta& meta, const RuntimeGeometry& geometry, 
   if (params.idFrame) {
     cl.setVertexLayout(layout(false, true));
     for (const PlannedDraw& d : plan.draws) cl.draw(d.first * 3, d.count * 3);
-    return f;
+    return;
   }
   const float white[4] = {1, 1, 1, 1}, zero[4] = {0, 0, 0, 0};
   cl.setUniforms(7, white);
@@ -171,7 +179,6 @@ RecordedFrame recordFrame(const MtaMeta& meta, const RuntimeGeometry& geometry, 
     if (bind[i].texture != boundTexture) cl.bindTexture(0, boundTexture = bind[i].texture);
     cl.draw(d.first * 3, d.count * 3);
   }
-  return f;
 }
 
 }  // namespace tessera::mta

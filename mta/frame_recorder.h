@@ -47,5 +47,10 @@ struct RecordedFrame {
 
 RecordedFrame recordFrame(const MtaMeta& meta, const RuntimeGeometry& geometry, const FramePlan& plan, const ViewParams& view,
                           TextureCache& textures, const RecordParams& params);
+// The same, recorded into `out` (cleared first), whose storage is reused: TreeRenderer records every
+// frame into one RecordedFrame, so a frame's uploads cost one copy and no allocation once the blob
+// has grown to the largest frame's size.
+void recordFrame(const MtaMeta& meta, const RuntimeGeometry& geometry, const FramePlan& plan, const ViewParams& view,
+                 TextureCache& textures, const RecordParams& params, RecordedFrame& out);
 
 }  // namespace tessera::mta

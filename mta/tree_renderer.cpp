@@ -63,9 +63,10 @@ FrameResult TreeRenderer::renderFrame(const Camera& camera) {
   RecordParams rp;
   rp.width = options_.width;
   rp.height = options_.height;
-  RecordedFrame rec = recordFrame(meta, geometry_, r.plan, v, *textures_, rp);
+  RecordedFrame& rec = recorded_;
+  recordFrame(meta, geometry_, r.plan, v, *textures_, rp, rec);
   r.counters = countCommands(rec.list);
-  r.drawTexture = std::move(rec.drawTexture);
+  r.drawTexture = rec.drawTexture;
   r.recordMs = msSince(t0);
 
   t0 = std::chrono::steady_clock::now();
@@ -81,8 +82,8 @@ std::vector<uint32_t> TreeRenderer::triangleIds(const Camera& camera, const Fram
   rp.width = options_.width;
   rp.height = options_.height;
   rp.idFrame = true;
-  RecordedFrame rec = recordFrame(file_.meta(), geometry_, plan, v, *textures_, rp);
-  backend_->execute(rec.list, "atlas tree id frame");
+  recordFrame(file_.meta(), geometry_, plan, v, *textures_, rp, recorded_);
+  backend_->execute(recorded_.list, "atlas tree id frame");
   const std::vector<uint8_t> bytes = presentedLevel0();
   std::vector<uint32_t> ids(size_t(options_.width) * options_.height);
   std::memcpy(ids.data(), bytes.data(), ids.size() * 4);

@@ -73,6 +73,9 @@ class TreeRenderer {
   std::unique_ptr<Residency> residency_;
   std::unique_ptr<TextureCache> textures_;
   std::unique_ptr<CpuBackend> backend_;
+  // Every frame is recorded into this one, so its upload blob (every resident atlas) keeps its
+  // storage from frame to frame (CommandList::clear).
+  RecordedFrame recorded_;
   uint32_t frame_ = 0;
 };
 

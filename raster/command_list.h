@@ -146,6 +146,16 @@ class CommandList {
   const std::vector<uint8_t>& blob() const { return blob_; }
   uint32_t resourceCount() const { return nextId_ - 1; }
 
+  // Empties the list for recording the next frame into it, keeping the storage of the commands and
+  // the blob: a renderer that records every frame (mta::TreeRenderer uploads every resident atlas,
+  // tens of MB) then neither regrows the blob nor faults fresh pages in for it each frame. Ids start
+  // again at 1, so the list is the same as a newly constructed one recording the same calls.
+  void clear() {
+    cmds_.clear();
+    blob_.clear();
+    nextId_ = 1;
+  }
+
   // Keeps the first n commands (the blob is kept whole, so every range stays valid). Used to replay a
   // prefix of a frame, e.g. for draw-level bisection.
   void truncate(size_t n) {
