@@ -68,6 +68,12 @@ Material materialOf(const TabMesh& m) {
 
 CommandList recordTabFrame(const TabScene& s, Variant variant, const TabView& view, TabDraws* drawsOut) {
   CommandList cl;
+  recordTabFrame(s, variant, view, cl, drawsOut);
+  return cl;
+}
+
+void recordTabFrame(const TabScene& s, Variant variant, const TabView& view, CommandList& cl, TabDraws* drawsOut) {
+  cl.clear();
   Recorder rec(s, cl);
   TabDraws draws;
   auto target = [&](Format f) {
@@ -227,7 +233,6 @@ CommandList recordTabFrame(const TabScene& s, Variant variant, const TabView& vi
     for (const auto& [dist, i] : order) drawTexturedMesh(i), ++draws.blend;
   }
   if (drawsOut) *drawsOut = draws;
-  return cl;
 }
 
 }  // namespace tessera::batching

@@ -44,5 +44,8 @@ struct TabDraws {
 };
 
 CommandList recordTabFrame(const TabScene& scene, Variant variant, const TabView& view, TabDraws* draws = nullptr);
+// The same, recorded into `out` (cleared first, its storage kept): a path renders every frame into
+// the same lists, so the uploads of the texture arrays cost one copy and no fresh pages per frame.
+void recordTabFrame(const TabScene& scene, Variant variant, const TabView& view, CommandList& out, TabDraws* draws = nullptr);
 
 }  // namespace tessera::batching

@@ -20,6 +20,7 @@
 #include "raster/tolerances.h"
 #include "raster/rast.h"
 #include "raster/setup.h"
+#include "raster/storage_pool.h"
 #include "raster/validate.h"
 
 namespace tessera {
@@ -141,11 +142,28 @@ struct CpuBackend::Impl {
   ReusedArray<uint32_t> drawIndices;
   ReusedArray<VertexIn> drawIn;
   ReusedArray<VertexOut> drawOut;
+  // Texel and buffer storage of the previous frame (storage_pool.h); what this frame does not take is
+  // released when it ends (CpuBackend::execute).
+  StoragePool storage;
   tbb::enumerable_thread_specific<RastScratch> scratch;
   StageTimes times;
   uint64_t binTicks = 0;  // appendToScene runs on the calling thread
   // LOD probe: per (colour attachment 0, level), one map per layer.
   std::map<std::pair<const TextureData*, uint32_t>, std::vector<LodMap>> lodMaps;
+  // The previous frame's LOD maps (about 42 MB at 640x480): reused like `storage`, released likewise.
+  std::vector<std::vector<LodPixel>> spareLod;
+
+  std::vector<LodPixel> takeLodPixels(size_t n) {
+    size_t best = spareLod.size();
+    for (size_t i = 0; i < spareLod.size(); ++i)
+      if (spareLod[i].capacity() >= n && (best == spareLod.size() || spareLod[i].capacity() < spareLod[best].capacity())) best = i;
+    if (best == spareLod.size()) return std::vector<LodPixel>(n);
+    std::vector<LodPixel> v = std::move(spareLod[best]);
+    spareLod[best] = std::move(spareLod.back());
+    spareLod.pop_back();
+    v.assign(n, LodPixel{});  // every pixel empty, as in a new map
+    return v;
+  }
 
   void resize(ResourceId id) {
     const size_t n = size_t(id) + 1;
@@ -205,7 +223,8 @@ struct CpuBackend::Impl {
       std::vector<LodMap>& maps = lodMaps[{c, t.level}];
       const int32_t w = scene.target.width, h = scene.target.height;
       if (maps.size() != c->desc.layers || maps[0].width != w || maps[0].height != h) {
-        maps.assign(c->desc.layers, LodMap{w, h, std::vector<LodPixel>(size_t(w) * size_t(h))});
+        maps.resize(c->desc.layers);
+        for (LodMap& m : maps) m = LodMap{w, h, takeLodPixels(size_t(w) * size_t(h))};
       }
       scene.lod = &maps;
     }
@@ -436,6 +455,14 @@ struct CpuBackend::Impl {
     drawIndices = std::move(old.drawIndices);
     drawIn = std::move(old.drawIn);
     drawOut = std::move(old.drawOut);
+    for (auto& t : old.textures)
+      if (t)
+        for (auto& level : t->levels) storage.give(std::move(level));
+    for (auto& b : old.buffers)
+      if (b) storage.give(std::move(b->bytes));
+    for (auto& entry : old.lodMaps)
+      for (LodMap& m : entry.second)
+        if (m.pixels.capacity() > 0) spareLod.push_back(std::move(m.pixels));
   }
 
   bool executed = false;
@@ -463,7 +490,7 @@ struct CpuBackend::Impl {
 
   void apply(const CommandList&, const CreateTexture& c) {
     resize(c.id);
-    textures[c.id] = std::make_unique<TextureData>(c.desc);
+    textures[c.id] = std::make_unique<TextureData>(c.desc, &storage);
     if (c.desc.kind == TextureKind::Buffer) textures[c.id]->buffer = buffers[c.desc.buffer].get();
   }
   void apply(const CommandList& l, const UploadTexture& c) {
@@ -479,7 +506,7 @@ struct CpuBackend::Impl {
     resize(c.id);
     buffers[c.id] = std::make_unique<BufferData>();
     buffers[c.id]->kind = c.kind;
-    buffers[c.id]->bytes.assign(size_t(c.size), 0);
+    buffers[c.id]->bytes = storage.take(size_t(c.size));
   }
   void apply(const CommandList& l, const UploadBuffer& c) {
     flush();
@@ -550,6 +577,8 @@ void CpuBackend::execute(const CommandList& list, std::string_view frameName) {
   tbb::task_arena arena(threads);
   const uint64_t tick0 = stageClock();
   arena.execute([&] { impl_->run(list); });
+  impl_->storage.release();  // the previous frame's storage that this one did not reuse
+  std::vector<std::vector<LodPixel>>().swap(impl_->spareLod);
   const uint64_t ticks = stageClock() - tick0;
   const Clock::time_point end = Clock::now();
   StageTimes& st = impl_->times;
@@ -599,6 +628,8 @@ std::vector<PresentedImage> CpuBackend::presented() const {
 
 const PipelineStats& CpuBackend::stats() const { return impl_->stats; }
 const StageTimes& CpuBackend::stageTimes() const { return impl_->times; }
+
+const RenderOptions& CpuBackend::options() const { return impl_->options; }
 
 const LodMap* CpuBackend::lodMap(const PresentedImage& p) const {
   if (p.texture >= impl_->textures.size() || !impl_->textures[p.texture]) return nullptr;

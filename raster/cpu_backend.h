@@ -63,6 +63,7 @@ class CpuBackend {
   // Where the last execute() spent its time (stage_times.h). Wall times always; per-stage CPU times
   // with RenderOptions::stageTimes.
   const StageTimes& stageTimes() const;
+  const RenderOptions& options() const;
   // With RenderOptions::lodProbe: the LOD map of presented image `p` (its texture, level and layer);
   // nullptr without the probe or if nothing was rendered to it.
   const LodMap* lodMap(const PresentedImage& p) const;

@@ -73,5 +73,10 @@ void setLodQuadLog(LodQuadLog* log);
 // presented image (attachment 0 of the final target at its level and layer). Throws Error (prefixed
 // with frameName) if the list is invalid or presents nothing.
 LodMap lodMap(const CommandList& list, int threads = 0, std::string_view frameName = "frame");
+// The same on `probe`, a backend made with RenderOptions::lodProbe (Error otherwise), into `out`. A
+// caller probing a sequence of frames keeps both, so each frame reuses the storage of the last (the
+// backend's textures and maps, and out's pixels: a map is about 42 MB at 640x480).
+class CpuBackend;
+void lodMap(CpuBackend& probe, const CommandList& list, LodMap& out, std::string_view frameName = "frame");
 
 }  // namespace tessera

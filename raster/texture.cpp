@@ -6,17 +6,21 @@
 // result, so both backends sample identical texels.
 #include "raster/texture.h"
 
+#include "raster/storage_pool.h"
+
 #include <cstring>
 #include <string>
 
 namespace tessera {
 
-TextureData::TextureData(const TextureDesc& d) : desc(d) {
+TextureData::TextureData(const TextureDesc& d, StoragePool* pool) : desc(d) {
   // Buffer textures own no storage: their texels are the bytes of the bound buffer (GL 4.6 §8.9).
   if (desc.kind == TextureKind::Buffer) return;
   levels.resize(desc.levels);
   for (uint32_t l = 0; l < desc.levels; ++l) {
-    levels[l].assign(size_t(levelBytes(desc, l) * desc.layers), uint8_t{0});
+    const size_t n = size_t(levelBytes(desc, l) * desc.layers);
+    if (pool) levels[l] = pool->take(n);
+    else levels[l].assign(n, uint8_t{0});
   }
 }
 

@@ -18,6 +18,7 @@
 namespace tessera {
 
 struct Provenance;
+class StoragePool;
 
 struct BufferData {
   BufferKind kind = BufferKind::Vertex;
@@ -32,8 +33,9 @@ struct TextureData {
   // (provenance.h). shared_ptr: Provenance is incomplete here and holds TextureData itself.
   std::shared_ptr<Provenance> prov;
 
-  // Allocates zeroed storage for every level (2D / array kinds).
-  explicit TextureData(const TextureDesc& d);
+  // Allocates zeroed storage for every level (2D / array kinds), taken from `pool` when one is given
+  // (the storage is zeroed either way).
+  explicit TextureData(const TextureDesc& d, StoragePool* pool = nullptr);
   uint8_t* texel(uint32_t level, uint32_t layer, uint32_t x, uint32_t y) {
     const uint32_t w = levelWidth(desc, level), h = levelHeight(desc, level);
     return levels[level].data() + ((uint64_t(layer) * h + y) * w + x) * texelBytes(desc.format);

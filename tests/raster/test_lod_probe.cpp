@@ -2,7 +2,9 @@
 // here too: it only needs the maps). Expected values are worked out by hand from GL 4.6 §8.14.1.
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "base/error.h"
 #include "raster/cpu_backend.h"
@@ -202,4 +204,24 @@ TEST(LodCompare, MapsOfDifferentSizesAreAnErrorNamingBoth) {
 }
 
 }  // namespace
+TEST(LodProbe, AProbeBackendReusedOverFramesGivesTheMapsOfANewOne) {
+  // lodMap(probe, list, out) reuses the backend's storage and out's pixels from frame to frame
+  // (tab render probes every frame so); each map must still be the one a new backend records.
+  const std::vector<CommandList> frames = {scenes::build("city_block", 160, 120), quadsFrame({{64, 0.0f}}, false),
+                                           scenes::build("texture_array", 96, 64), scenes::build("city_block", 160, 120)};
+  RenderOptions o;
+  o.threads = 2;
+  o.lodProbe = true;
+  CpuBackend probe(o);
+  LodMap out;
+  for (size_t i = 0; i < frames.size(); ++i) {
+    lodMap(probe, frames[i], out);
+    const LodMap fresh = lodMap(frames[i], 2);
+    EXPECT_EQ(out.width, fresh.width) << i;
+    EXPECT_EQ(out.height, fresh.height) << i;
+    EXPECT_TRUE(out.pixels == fresh.pixels) << "frame " << i;
+  }
+  EXPECT_THROW(lodMap(*std::make_unique<CpuBackend>(RenderOptions{1}), frames[0], out), Error);
+}
+
 }  // namespace tessera

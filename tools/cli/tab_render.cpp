@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <optional>
 
 #include "base/error.h"
 #include "base/sha256.h"
@@ -102,12 +101,19 @@ nlohmann::json runTabRender(const TabRenderArgs& a) {
   else variants = {a.baseline ? Variant::Baseline : Variant::Batched};
 
   CpuBackend backend(RenderOptions{a.threads});
+  RenderOptions probeOptions{a.threads};
+  probeOptions.lodProbe = true;
+  CpuBackend probe(probeOptions);  // --both: the LOD maps of both variants, on reused storage
+  LodMap baselineLod, batchedLod;
   nlohmann::json rows = nlohmann::json::array();
   PathRunArgs saveRule;
   saveRule.saveEvery = a.saveEvery;
   Progress progress("tab render", path.frames.size(), a.quiet);
   double identicalMin = 100.0, identicalSum = 0.0;
   uint64_t lambdaDiffering = 0, lambdaPixels = 0;
+  // One list per variant, recorded into again every frame (CommandList::clear keeps the storage of the
+  // texture-array uploads); with --both the batched frame is compared with the baseline's list.
+  std::vector<CommandList> lists(variants.size());
   for (size_t i = 0; i < path.frames.size(); ++i) {
     mta::validate(path.frames[i], "tab render: camera path frame " + std::to_string(i));
     batching::TabView view;
@@ -116,11 +122,13 @@ nlohmann::json runTabRender(const TabRenderArgs& a) {
     view.width = uint32_t(w), view.height = uint32_t(h);
     const bool save = saveFrame(saveRule, i, path.frames.size());
     std::vector<uint8_t> firstImage;
-    std::optional<CommandList> firstList;
+    const CommandList* firstList = nullptr;
     std::string detail;
-    for (Variant v : variants) {
+    for (size_t vi = 0; vi < variants.size(); ++vi) {
+      const Variant v = variants[vi];
       batching::TabDraws draws;
-      const CommandList list = batching::recordTabFrame(s, v, view, &draws);
+      batching::recordTabFrame(s, v, view, lists[vi], &draws);
+      const CommandList& list = lists[vi];
       const FrameCounters c = countCommands(list);
       const auto t0 = std::chrono::steady_clock::now();
       backend.execute(list, std::string("tab ") + batching::variantName(v) + " frame " + std::to_string(i));
@@ -159,8 +167,9 @@ nlohmann::json runTabRender(const TabRenderArgs& a) {
         identicalMin = std::min(identicalMin, pct);
         identicalSum += pct;
         // The same LOD at every pixel (docs/texel.md): the probe re-renders both frames (untimed).
-        const verify::LodComparison lc =
-            verify::compareLodMaps(lodMap(*firstList, a.threads), lodMap(list, a.threads), "baseline", "batched");
+        lodMap(probe, *firstList, baselineLod);
+        lodMap(probe, list, batchedLod);
+        const verify::LodComparison lc = verify::compareLodMaps(baselineLod, batchedLod, "baseline", "batched");
         nlohmann::json reasons;
         for (int k = 1; k < verify::kLodDiffKinds; ++k) reasons[std::string(verify::lodDiffName(verify::LodDiff(k)))] = lc.count[k];
         r["lambda_pixels_with_lookups"] = lc.pixelsWithLookups;
@@ -174,7 +183,7 @@ nlohmann::json runTabRender(const TabRenderArgs& a) {
           r["diff_image"] = diff;
         }
       }
-      if (firstImage.empty()) firstImage = std::move(pixels), firstList = list;
+      if (firstImage.empty()) firstImage = std::move(pixels), firstList = &list;
       detail += std::string(batching::variantName(v)) + " " + std::to_string(c.draw_calls) + " draws ";
       rows.push_back(std::move(r));
     }
