@@ -1,8 +1,6 @@
-// loadModel()'s dispatch, and lazy texture access through OpenImageIO.
+// loadModel()'s dispatch, and lazy texture access through OpenImageIO (raster/image_module.h).
 #include "model/model.h"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -14,6 +12,7 @@
 
 #include "base/error.h"
 #include "model/loaders.h"
+#include "raster/image_module.h"
 
 namespace tessera::model {
 
@@ -219,10 +218,12 @@ class OpenTexture {
  public:
   OpenTexture(const Model& m, size_t index) : what_((requireIndex(m, index), describe(m, index))) {
     const TextureRef& t = m.textures[index];
-    config_.attribute("oiio:UnassociatedAlpha", 1);  // alpha as stored, colour not premultiplied
+    const imagemod::Api& api = imagemod::api();
+    std::string error;
+    // Alpha as stored, colour not premultiplied (the module's readers never premultiply).
     if (t.source == TextureRef::Source::File) {
-      in_ = OIIO::ImageInput::open(t.path, &config_);
-      if (!in_) throw Error(what_ + ": cannot read image: " + OIIO::geterror());
+      in_ = api.open(t.path, error);
+      if (!in_) throw Error(what_ + ": cannot read image: " + error);
       return;
     }
     if (t.source == TextureRef::Source::FileRange) {
@@ -233,11 +234,8 @@ class OpenTexture {
       data_ = t.bytes->data(), size_ = t.bytes->size();
     }
     const std::string ext = formatHint(t, data_, size_);
-    auto probe = OIIO::ImageInput::create("x." + ext);
-    if (probe && probe->supports("ioproxy")) {
-      proxy_ = std::make_unique<OIIO::Filesystem::IOMemReader>(data_, size_);
-      in_ = OIIO::ImageInput::open("memory." + ext, &config_, proxy_.get());
-    } else {
+    in_ = api.openMemory(data_, size_, ext, error);
+    if (!in_ && error.empty()) {  // that format's reader cannot read from memory
       static std::atomic<uint64_t> counter{0};
       temp_ = (fs::temp_directory_path() /
                ("tessera-texture-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "." + ext))
@@ -246,26 +244,24 @@ class OpenTexture {
       f.write(reinterpret_cast<const char*>(data_), std::streamsize(size_));
       f.close();
       if (!f) throw Error(what_ + ": cannot write the temporary file " + temp_);
-      in_ = OIIO::ImageInput::open(temp_, &config_);
+      in_ = api.open(temp_, error);
     }
-    if (!in_) throw Error(what_ + ": cannot read image (" + ext + "): " + OIIO::geterror());
+    if (!in_) throw Error(what_ + ": cannot read image (" + ext + "): " + error);
   }
   ~OpenTexture() {
-    if (in_) in_->close();
+    in_.reset();  // closed before its temporary file goes
     if (!temp_.empty()) std::remove(temp_.c_str());
   }
-  OIIO::ImageInput& in() { return *in_; }
+  imagemod::Reader& in() { return *in_; }
   const std::string& what() const { return what_; }
 
  private:
   std::string what_;
-  OIIO::ImageSpec config_;
   std::vector<uint8_t> owned_;
   const uint8_t* data_ = nullptr;
   size_t size_ = 0;
-  std::unique_ptr<OIIO::Filesystem::IOMemReader> proxy_;
   std::string temp_;
-  std::unique_ptr<OIIO::ImageInput> in_;
+  std::unique_ptr<imagemod::Reader> in_;
 };
 
 }  // namespace
@@ -282,8 +278,8 @@ Image loadTexture(const Model& model, size_t index) {
     return img;
   }
   OpenTexture ot(model, index);
-  const OIIO::ImageSpec spec = ot.in().spec();
-  const int nc = spec.nchannels;
+  const imagemod::Header spec = ot.in().header();
+  const int nc = spec.channels;
   if (spec.width <= 0 || spec.height <= 0 || nc <= 0 || spec.width > 65536 || spec.height > 65536)
     throw Error(ot.what() + ": unsupported image size " + std::to_string(spec.width) + "x" +
                 std::to_string(spec.height) + "x" + std::to_string(nc));
@@ -298,10 +294,10 @@ Image loadTexture(const Model& model, size_t index) {
   img.width = uint32_t(spec.width), img.height = uint32_t(spec.height), img.fileChannels = nc;
   const size_t texels = size_t(img.width) * img.height;
   std::vector<uint8_t> raw(texels * size_t(nc));
-  if (!ot.in().read_image(0, 0, 0, nc, OIIO::TypeDesc::UINT8, raw.data()))
-    throw Error(ot.what() + ": cannot decode image: " + ot.in().geterror());
+  if (const std::string e = ot.in().read(imagemod::Type::U8, raw.data()); !e.empty())
+    throw Error(ot.what() + ": cannot decode image: " + e);
   img.rgba.resize(texels * 4);
-  const int alpha = spec.alpha_channel >= 0 ? spec.alpha_channel : (nc == 2 ? 1 : nc >= 4 ? 3 : -1);
+  const int alpha = spec.alphaChannel >= 0 ? spec.alphaChannel : (nc == 2 ? 1 : nc >= 4 ? 3 : -1);
   for (size_t i = 0; i < texels; ++i) {
     const uint8_t* s = &raw[i * size_t(nc)];
     uint8_t* d = &img.rgba[i * 4];
@@ -322,8 +318,8 @@ TextureInfo readHeader(const Model& model, size_t index) {
   requireIndex(model, index);
   if (model.textures[index].rawRGBA) return {model.textures[index].rawWidth, model.textures[index].rawHeight, 4, "raw"};
   OpenTexture ot(model, index);
-  const OIIO::ImageSpec& spec = ot.in().spec();
-  return {uint32_t(std::max(spec.width, 0)), uint32_t(std::max(spec.height, 0)), spec.nchannels, ot.in().format_name()};
+  const imagemod::Header& spec = ot.in().header();
+  return {uint32_t(std::max(spec.width, 0)), uint32_t(std::max(spec.height, 0)), spec.channels, spec.formatName};
 }
 
 }  // namespace

@@ -1,12 +1,11 @@
 #include "raster/image_io.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <cstdio>
 #include <cstring>
 
 #include "base/atomic_file.h"
 #include "base/sha256.h"
+#include "raster/image_module.h"
 
 namespace tessera {
 
@@ -28,12 +27,11 @@ std::string imageExtension(Format f) { return isUnorm(f) ? ".png" : ".exr"; }
 
 namespace {
 
-void writeAtomically(const std::string& path, const OIIO::ImageSpec& spec, const void* pixels) {
+void writeAtomically(const std::string& path, const imagemod::WriteSpec& spec, const void* pixels) {
+  const imagemod::Api& api = imagemod::api();
   writeFileAtomically(path, [&](const std::string& tmp) {
-    auto out = OIIO::ImageOutput::create(path);  // format from the final name's extension
-    if (!out) throw Error(path + ": cannot create an image writer: " + OIIO::geterror());
-    if (!out->open(tmp, spec)) throw Error(path + ": cannot open for writing: " + out->geterror());
-    if (!out->write_image(spec.format, pixels) || !out->close()) throw Error(path + ": write failed: " + out->geterror());
+    const std::string error = api.write(path, tmp, spec, pixels);  // format from the final name's extension
+    if (!error.empty()) throw Error(path + ": " + error);
   });
 }
 
@@ -42,53 +40,47 @@ void writeAtomically(const std::string& path, const OIIO::ImageSpec& spec, const
 void writeImage(const TextureData& tex, uint32_t level, uint32_t layer, const std::string& path) {
   const uint32_t w = levelWidth(tex.desc, level), h = levelHeight(tex.desc, level);
   const auto px = imagePixels(tex, level, layer);
-  OIIO::TypeDesc type;
+  imagemod::WriteSpec spec;
+  spec.width = int(w), spec.height = int(h), spec.channels = channelCount(tex.desc.format);
   switch (tex.desc.format) {
     case Format::RGBA8:
-    case Format::R8: type = OIIO::TypeDesc::UINT8; break;
-    case Format::R32UI: type = OIIO::TypeDesc::UINT32; break;
-    default: type = OIIO::TypeDesc::FLOAT; break;
+    case Format::R8: spec.type = imagemod::Type::U8; break;
+    case Format::R32UI: spec.type = imagemod::Type::U32; break;
+    default: spec.type = imagemod::Type::Float; break;
   }
-  OIIO::ImageSpec spec(int(w), int(h), channelCount(tex.desc.format), type);
-  if (tex.desc.format == Format::R32UI) spec.channelnames = {"id"};
-  if (tex.desc.format == Format::RGBA8) {
-    spec.alpha_channel = 3;
-    // Our pixels are what the target holds; without this OIIO would "un-premultiply" them on the way
-    // into PNG and the file would no longer match image_sha256.
-    spec.attribute("oiio:UnassociatedAlpha", 1);
-  }
+  if (tex.desc.format == Format::R32UI) spec.firstChannelName = "id";
+  spec.alphaLast = tex.desc.format == Format::RGBA8;
   // OIIO's OpenEXR writer stamps the current time as "DateTime" unless the spec names one, and an
   // empty value means none. Without this the same frame gave different EXR bytes on every run, so a
   // file hash could not stand for the frame as the PNGs' hashes do.
-  spec.attribute("DateTime", "");
+  spec.emptyDateTime = true;
   writeAtomically(path, spec, px.data());
 }
 
 DecodedImage readImage(const std::string& path) {
-  // Read PNG alpha as stored: without this OIIO premultiplies colour by alpha on input.
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  auto in = OIIO::ImageInput::open(path, &config);
-  if (!in) throw Error(path + ": cannot read image: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
+  std::string error;
+  const std::unique_ptr<imagemod::Reader> in = imagemod::api().open(path, error);  // alpha as stored
+  if (!in) throw Error(path + ": cannot read image: " + error);
+  const imagemod::Header& hd = in->header();
   DecodedImage img;
-  img.width = spec.width;
-  img.height = spec.height;
-  img.channels = spec.nchannels;
-  OIIO::TypeDesc type = spec.format;
-  if (type == OIIO::TypeDesc::UINT8) {
+  img.width = hd.width;
+  img.height = hd.height;
+  img.channels = hd.channels;
+  const imagemod::Type stored = hd.format;
+  imagemod::Type type;
+  if (stored == imagemod::Type::U8) {
     img.bitsPerChannel = 8;
-  } else if (type == OIIO::TypeDesc::UINT32 || type == OIIO::TypeDesc::INT32) {
+    type = imagemod::Type::U8;
+  } else if (stored == imagemod::Type::U32 || stored == imagemod::Type::I32) {
     img.bitsPerChannel = 32;
-    type = OIIO::TypeDesc::UINT32;
+    type = imagemod::Type::U32;
   } else {
     img.bitsPerChannel = 32;
     img.isFloat = true;
-    type = OIIO::TypeDesc::FLOAT;
+    type = imagemod::Type::Float;
   }
   img.pixels.resize(size_t(img.width) * img.height * img.channels * (img.bitsPerChannel / 8));
-  if (!in->read_image(0, 0, 0, img.channels, type, img.pixels.data()))
-    throw Error(path + ": cannot decode image: " + in->geterror());
+  if (const std::string e = in->read(type, img.pixels.data()); !e.empty()) throw Error(path + ": cannot decode image: " + e);
   return img;
 }
 
@@ -98,13 +90,12 @@ void writePngRGBA8(const std::string& path, int width, int height, const uint8_t
 
 void writeImage8(const std::string& path, int width, int height, int channels, const uint8_t* topDownRows,
                  const Image8Options& options) {
-  OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
-  if (channels == 4) {
-    spec.alpha_channel = 3;
-    spec.attribute("oiio:UnassociatedAlpha", 1);  // store alpha as given, colour not premultiplied
-  }
-  if (options.jpegQuality > 0) spec.attribute("Compression", "jpeg:" + std::to_string(options.jpegQuality));
-  if (options.pngCompressionLevel >= 0) spec.attribute("png:compressionLevel", options.pngCompressionLevel);
+  imagemod::WriteSpec spec;
+  spec.width = width, spec.height = height, spec.channels = channels;
+  spec.type = imagemod::Type::U8;
+  spec.alphaLast = channels == 4;  // store alpha as given, colour not premultiplied
+  spec.jpegQuality = options.jpegQuality;
+  spec.pngCompressionLevel = options.pngCompressionLevel;
   writeAtomically(path, spec, topDownRows);
 }
 

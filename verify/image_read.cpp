@@ -1,10 +1,10 @@
 #include "verify/image_read.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <cmath>
 #include <cstring>
 #include <limits>
+
+#include "raster/image_module.h"
 
 namespace tessera::verify {
 
@@ -29,28 +29,18 @@ size_t typeBytes(ChannelType t) {
   return 0;
 }
 
-std::optional<ChannelType> fromOiio(OIIO::TypeDesc t) {
-  switch (t.basetype) {
-    case OIIO::TypeDesc::UINT8:
-      return ChannelType::UInt8;
-    case OIIO::TypeDesc::INT8:
-      return ChannelType::Int8;
-    case OIIO::TypeDesc::UINT16:
-      return ChannelType::UInt16;
-    case OIIO::TypeDesc::INT16:
-      return ChannelType::Int16;
-    case OIIO::TypeDesc::UINT32:
-      return ChannelType::UInt32;
-    case OIIO::TypeDesc::INT32:
-      return ChannelType::Int32;
-    case OIIO::TypeDesc::HALF:
-      return ChannelType::Half;
-    case OIIO::TypeDesc::FLOAT:
-      return ChannelType::Float;
-    case OIIO::TypeDesc::DOUBLE:
-      return ChannelType::Double;
-    default:
-      return std::nullopt;
+std::optional<ChannelType> fromModule(imagemod::Type t) {
+  switch (t) {
+    case imagemod::Type::U8: return ChannelType::UInt8;
+    case imagemod::Type::I8: return ChannelType::Int8;
+    case imagemod::Type::U16: return ChannelType::UInt16;
+    case imagemod::Type::I16: return ChannelType::Int16;
+    case imagemod::Type::U32: return ChannelType::UInt32;
+    case imagemod::Type::I32: return ChannelType::Int32;
+    case imagemod::Type::Half: return ChannelType::Half;
+    case imagemod::Type::Float: return ChannelType::Float;
+    case imagemod::Type::Double: return ChannelType::Double;
+    default: return std::nullopt;
   }
 }
 
@@ -147,43 +137,40 @@ double DecodedImage::value(size_t p, int c) const {
 
 ReadOutcome readImage(const std::string& path) {
   ReadOutcome out;
-  // Compare what the file stores: without this hint OIIO premultiplies PNG colour by alpha on read.
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  auto in = OIIO::ImageInput::open(path, &config);
+  // Compare what the file stores: the module reads colour as stored, never premultiplied by alpha.
+  std::string error;
+  const std::unique_ptr<imagemod::Reader> in = imagemod::api().open(path, error);
   if (!in) {
-    out.error = "cannot read '" + path + "': " + OIIO::geterror();
+    out.error = "cannot read '" + path + "': " + error;
     return out;
   }
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.deep || spec.depth > 1) {
+  const imagemod::Header& hd = in->header();
+  if (hd.deepOrVolume) {
     out.unsupported = true;
     out.error = "'" + path + "' is a deep or volume image (only flat 2D images are compared)";
     return out;
   }
   DecodedImage img;
-  img.width = spec.width, img.height = spec.height;
-  img.originX = spec.x, img.originY = spec.y;
-  for (int c = 0; c < spec.nchannels; ++c) {
-    const auto t = fromOiio(spec.channelformat(c));
+  img.width = hd.width, img.height = hd.height;
+  img.originX = hd.x, img.originY = hd.y;
+  for (int c = 0; c < hd.channels; ++c) {
+    const auto t = fromModule(hd.channelTypes[size_t(c)]);
     if (!t) {
       out.unsupported = true;
-      out.error =
-          "'" + path + "' channel " + std::to_string(c) + " has the unsupported type " + spec.channelformat(c).c_str();
+      out.error = "'" + path + "' channel " + std::to_string(c) + " has the unsupported type " + hd.channelTypeNames[size_t(c)];
       return out;
     }
-    img.names.push_back(c < int(spec.channelnames.size()) ? spec.channelnames[size_t(c)] : "ch" + std::to_string(c));
+    img.names.push_back(c < int(hd.channelNames.size()) ? hd.channelNames[size_t(c)] : "ch" + std::to_string(c));
     img.types.push_back(*t);
     img.offsets.push_back(img.pixelBytes);
     img.pixelBytes += typeBytes(*t);
   }
   img.bytes.resize(img.pixels() * img.pixelBytes);
-  // TypeDesc::UNKNOWN = the file's own per-channel types, packed: no conversion, no rounding.
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UNKNOWN, img.bytes.data())) {
-    out.error = "cannot read the pixels of '" + path + "': " + in->geterror();
+  // Type::Unknown = the file's own per-channel types, packed: no conversion, no rounding.
+  if (const std::string e = in->read(imagemod::Type::Unknown, img.bytes.data()); !e.empty()) {
+    out.error = "cannot read the pixels of '" + path + "': " + e;
     return out;
   }
-  in->close();
   out.image = std::move(img);
   return out;
 }

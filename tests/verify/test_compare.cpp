@@ -1,5 +1,4 @@
 // The idiff-compatible image comparison and its report directory.
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,6 +8,7 @@
 #include <sstream>
 
 #include "raster/image_io.h"
+#include "raster/image_module.h"
 #include "verify/compare_report.h"
 #include "verify/image_compare.h"
 
@@ -29,15 +29,11 @@ std::string testDir() {
 }
 
 template <typename T>
-std::string writeFile(const std::string& path, int w, int h, int channels, OIIO::TypeDesc type,
-                      const std::vector<T>& px) {
-  auto out = OIIO::ImageOutput::create(path);
-  EXPECT_TRUE(out) << path;
-  OIIO::ImageSpec spec(w, h, channels, type);
-  if (channels == 4) spec.alpha_channel = 3, spec.attribute("oiio:UnassociatedAlpha", 1);
-  EXPECT_TRUE(out->open(path, spec)) << out->geterror();
-  EXPECT_TRUE(out->write_image(type, px.data())) << out->geterror();
-  out->close();
+std::string writeFile(const std::string& path, int w, int h, int channels, imagemod::Type type, const std::vector<T>& px) {
+  imagemod::WriteSpec spec;
+  spec.width = w, spec.height = h, spec.channels = channels, spec.type = type;
+  spec.alphaLast = channels == 4;
+  EXPECT_EQ(imagemod::api().write(path, path, spec, px.data()), "") << path;
   return path;
 }
 
@@ -119,9 +115,9 @@ TEST(Compare, SizeChannelOrTypeMismatchIsRefusedWithThree) {
   EXPECT_EQ(size.exitCode(), 3);
   EXPECT_NE(size.message.find("9x8"), std::string::npos) << size.message;
   EXPECT_EQ(size.pixels, 0u);  // never compared
-  writeFile(d + "/rgb.png", 8, 8, 3, OIIO::TypeDesc::UINT8, std::vector<uint8_t>(8 * 8 * 3, 1));
+  writeFile(d + "/rgb.png", 8, 8, 3, imagemod::Type::U8, std::vector<uint8_t>(8 * 8 * 3, 1));
   EXPECT_EQ(compareImages(d + "/a.png", d + "/rgb.png").exitCode(), 3);
-  writeFile(d + "/f.exr", 8, 8, 4, OIIO::TypeDesc::FLOAT, std::vector<float>(8 * 8 * 4, 0.5f));
+  writeFile(d + "/f.exr", 8, 8, 4, imagemod::Type::Float, std::vector<float>(8 * 8 * 4, 0.5f));
   const CompareResult type = compareImages(d + "/a.png", d + "/f.exr");
   EXPECT_EQ(type.exitCode(), 3);
   EXPECT_NE(type.message.find("float"), std::string::npos) << type.message;
@@ -146,8 +142,8 @@ TEST(Compare, NanEqualsNanAndNothingElse) {
   const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
   // Pixel: NaN/NaN (equal), NaN/0.5 (mismatch), inf/inf (equal), inf/-inf (mismatch), 0.25/0.25.
   const std::vector<float> a = {nan, nan, inf, inf, 0.25f}, b = {nan, 0.5f, inf, -inf, 0.25f};
-  writeFile(d + "/a.exr", 5, 1, 1, OIIO::TypeDesc::FLOAT, a);
-  writeFile(d + "/b.exr", 5, 1, 1, OIIO::TypeDesc::FLOAT, b);
+  writeFile(d + "/a.exr", 5, 1, 1, imagemod::Type::Float, a);
+  writeFile(d + "/b.exr", 5, 1, 1, imagemod::Type::Float, b);
   CompareOptions huge;
   huge.failThreshold = 1e30;
   const CompareResult r = compareImages(d + "/a.exr", d + "/b.exr", huge);
@@ -169,8 +165,8 @@ TEST(Compare, HistogramMeanAndPsnrOfAHandMadePair) {
   const std::vector<int> deltas = {0, 1, 2, 3, 4, 5, 8, 9, 100, 200};
   std::vector<uint8_t> a(deltas.size(), 20), b;
   for (size_t i = 0; i < deltas.size(); ++i) b.push_back(uint8_t(20 + deltas[i]));
-  writeFile(d + "/a.png", 10, 1, 1, OIIO::TypeDesc::UINT8, a);
-  writeFile(d + "/b.png", 10, 1, 1, OIIO::TypeDesc::UINT8, b);
+  writeFile(d + "/a.png", 10, 1, 1, imagemod::Type::U8, a);
+  writeFile(d + "/b.png", 10, 1, 1, imagemod::Type::U8, b);
   const CompareResult r = compareImages(d + "/a.png", d + "/b.png");
   const std::array<uint64_t, kHistogramBins> expected = {1, 1, 1, 2, 2, 1, 0, 0, 1, 1};
   EXPECT_EQ(r.histogram, expected);
@@ -186,8 +182,8 @@ TEST(Compare, Uint32ExrIdsCompareExactlyInIntegerSteps) {
   const std::string d = testDir();
   std::vector<uint32_t> a = {0xffffffffu, 7, 4294967294u, 12}, b = a;
   b[3] = 1012;
-  writeFile(d + "/a.exr", 2, 2, 1, OIIO::TypeDesc::UINT32, a);
-  writeFile(d + "/b.exr", 2, 2, 1, OIIO::TypeDesc::UINT32, b);
+  writeFile(d + "/a.exr", 2, 2, 1, imagemod::Type::U32, a);
+  writeFile(d + "/b.exr", 2, 2, 1, imagemod::Type::U32, b);
   const CompareResult r = compareImages(d + "/a.exr", d + "/b.exr");
   EXPECT_EQ(r.exitCode(), 2);
   EXPECT_EQ(r.differingPixels, 1u);
@@ -226,13 +222,14 @@ TEST(Compare, ReportDirectoryHoldsEveryFileAndThePageReferencesThem) {
     EXPECT_NE(html.find(ref), std::string::npos) << ref;
 
   // The heat map: image area, then the legend strip; a differing pixel has its bin's colour.
-  auto in = OIIO::ImageInput::open(report + "/heatmap.png");
-  ASSERT_TRUE(in);
-  const OIIO::ImageSpec spec = in->spec();
+  std::string error;
+  const auto in = imagemod::api().open(report + "/heatmap.png", error);
+  ASSERT_TRUE(in) << error;
+  const imagemod::Header spec = in->header();
   EXPECT_EQ(spec.width, 330);  // narrower images are padded to the legend's width
   EXPECT_EQ(spec.height, 30 + 22);
   std::vector<uint8_t> heat(size_t(spec.width) * size_t(spec.height) * 4);
-  ASSERT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, heat.data()));
+  ASSERT_EQ(in->read(imagemod::Type::U8, heat.data()), "");
   const auto& first = r.firstDifferences.at(0);
   const size_t at = (size_t(first.y) * size_t(spec.width) + size_t(first.x)) * 4;
   const Rgba expected = heatColor(r.images->bin[size_t(first.y) * 40 + size_t(first.x)]);
