@@ -205,6 +205,23 @@ PY
 )
     [ "$want" = "$got" ] || fail "image_sha256 $want != sha256 of decoded PNG $got"
     ;;
+  image_module_missing_or_wrong_is_a_clear_error)
+    # Image files go through libtessera_image_module.so, loaded at the first image write
+    # (raster/image_module.h). A module that cannot be found or loaded is named, with the way out, and
+    # the image that could not be written is not left behind, not even as a temporary.
+    refused 2 "cannot find the image module libtessera_image_module.so" \
+      env TESSERA_IMAGE_MODULE="$work/none/libx.so" "$tessera" render blend -o blend.png
+    grep -qF "$work/none/libx.so: no such file" refused.err || fail "the path tried is not named: $(cat refused.err)"
+    grep -qF "set TESSERA_IMAGE_MODULE" refused.err || fail "no way out named: $(cat refused.err)"
+    echo "not a library" > fake.so
+    refused 2 "cannot load the image module $work/fake.so" env TESSERA_IMAGE_MODULE="$work/fake.so" "$tessera" render blend -o blend.png
+    [ -z "$(ls -A | grep -v -e '^refused\.' -e '^fake\.so$')" ] || fail "left behind: $(ls -A)"
+    # A command that touches no image never loads it: the refusal of a bad size needs no module.
+    refused 2 "--size '12y4'" env TESSERA_IMAGE_MODULE="$work/none/libx.so" "$tessera" render blend --size 12y4
+    # And the module of the build is found without the variable.
+    "$tessera" render blend -o blend.png > /dev/null || fail "render with the build's own module failed"
+    [ -s blend.png ] || fail "no blend.png"
+    ;;
   unknown_scene_is_a_clear_error)
     if "$tessera" render no_such_scene 2> err.txt; then fail "accepted an unknown scene"; fi
     grep -q "unknown scene 'no_such_scene' (known: fill_fan" err.txt || fail "message: $(cat err.txt)"
