@@ -15,9 +15,9 @@
 namespace tessera::model::detail::gltf {
 
 enum class Generation {
-  One,                   // glTF 1.0 with a string version "1...": Assimp reads the file as it is
+  One,                      // glTF 1.0 with a string version "1...": Assimp reads the file as it is
   OneWithoutStringVersion,  // glTF 1.0 whose asset.version is a number in [1, 2) or missing
-  Two,                   // everything else: glTF 2.0 rules apply (and report a missing or bad version)
+  Two,                      // everything else: glTF 2.0 rules apply (and report a missing or bad version)
 };
 
 // glTF 1.0 when asset.version is a string starting with "1" or a number in [1, 2); when asset.version

@@ -28,7 +28,7 @@ std::string lower(std::string s) {
 // common ones Assimp reads. A fixed list, so that what a directory means does not depend on the
 // Assimp build.
 bool isModelExtension(const std::string& ext) {
-  static const char* kExtensions[] = {".gltf", ".glb", ".obj", ".ac", ".acc", ".ac3d",
+  static const char* kExtensions[] = {".gltf", ".glb", ".obj", ".ac",  ".acc", ".ac3d",
                                       ".dae",  ".fbx", ".3ds", ".ply", ".stl"};
   return std::any_of(std::begin(kExtensions), std::end(kExtensions), [&](const char* e) { return ext == e; });
 }
@@ -121,7 +121,8 @@ class ManifestReader {
     if (fs::is_directory(out.file, ec))
       fail(pointer + "/file", "'" + written + "' is a directory: a manifest lists model files, not scenes");
     if (isScenePath(out.file))
-      fail(pointer + "/file", "'" + written + "' is a scene manifest: manifests do not nest (so they cannot form a cycle)");
+      fail(pointer + "/file",
+           "'" + written + "' is a scene manifest: manifests do not nest (so they cannot form a cycle)");
     if (!fs::is_regular_file(out.file, ec))
       fail(pointer + "/file", "'" + written + "' (resolved to '" + out.file + "') does not exist");
     if (e.contains("name")) {
@@ -135,7 +136,8 @@ class ManifestReader {
       if (m[3] != 0.0 || m[7] != 0.0 || m[11] != 0.0 || m[15] != 1.0)
         fail(pointer + "/transform",
              "not affine: elements 3, 7, 11, 15 (the last row, column-major as glTF's node.matrix) must be 0 0 0 1, "
-             "got " + shownValue(json{m[3], m[7], m[11], m[15]}) + " (a row-major matrix puts its translation there)");
+             "got " +
+                 shownValue(json{m[3], m[7], m[11], m[15]}) + " (a row-major matrix puts its translation there)");
       for (int i = 0; i < 16; ++i) out.transform[i / 4][i % 4] = m[size_t(i)];
     } else if (trs) {
       glm::dvec3 t(0.0), r(0.0), s(1.0);
@@ -227,8 +229,8 @@ glm::dmat4 trsMatrix(const glm::dvec3& translation, const glm::dvec3& rotationDe
   glm::dmat4 t(1.0), sc(1.0);
   t[3] = glm::dvec4(translation, 1.0);
   sc[0][0] = scale.x, sc[1][1] = scale.y, sc[2][2] = scale.z;
-  const glm::dmat4 r =
-      compose(axisRotation(2, rotationDegrees.z), compose(axisRotation(1, rotationDegrees.y), axisRotation(0, rotationDegrees.x)));
+  const glm::dmat4 r = compose(axisRotation(2, rotationDegrees.z),
+                               compose(axisRotation(1, rotationDegrees.y), axisRotation(0, rotationDegrees.x)));
   return compose(compose(t, r), sc);
 }
 

@@ -31,9 +31,9 @@
 namespace tessera::model::detail {
 
 struct SceneEntry {
-  std::string file;     // resolved path of a model file
-  std::string name;     // the entry's `name`, or empty
-  std::string where;    // for messages: "/models/3" (manifest) or the file name (directory)
+  std::string file;   // resolved path of a model file
+  std::string name;   // the entry's `name`, or empty
+  std::string where;  // for messages: "/models/3" (manifest) or the file name (directory)
   glm::dmat4 transform{1.0};
 };
 

@@ -33,7 +33,9 @@ std::string inCity(const TextureRef& t) {
 }
 
 bool sameMaterial(const Material& a, const Material& b, const Model& ma, const Model& mb) {
-  const auto texturePath = [](const Model& m, int32_t t) { return t < 0 ? std::string() : inCity(m.textures[size_t(t)]); };
+  const auto texturePath = [](const Model& m, int32_t t) {
+    return t < 0 ? std::string() : inCity(m.textures[size_t(t)]);
+  };
   return a.name == b.name && texturePath(ma, a.baseColorTexture) == texturePath(mb, b.baseColorTexture) &&
          a.baseColorFactor == b.baseColorFactor && a.alphaMode == b.alphaMode && a.alphaCutoff == b.alphaCutoff &&
          a.doubleSided == b.doubleSided && a.wrapS == b.wrapS && a.wrapT == b.wrapT;
@@ -74,7 +76,9 @@ void expectTheSameCity(CityPreset preset) {
   EXPECT_EQ(a.bounds.max, b.bounds.max);
 }
 
-TEST(CitySplit, ABerlinSplitPerBuildingLoadsThroughItsManifestAsTheOneFileCity) { expectTheSameCity(CityPreset::Berlin); }
+TEST(CitySplit, ABerlinSplitPerBuildingLoadsThroughItsManifestAsTheOneFileCity) {
+  expectTheSameCity(CityPreset::Berlin);
+}
 
 TEST(CitySplit, AChemnitzSplitPerBuildingWithRotatedBuildingsInBlocksLoadsAsTheOneFileCity) {
   expectTheSameCity(CityPreset::Chemnitz);

@@ -127,9 +127,10 @@ TEST(Gltf1Detection, ANumberOutsideOneToTwoIsAGltf2ErrorAskingForAString) {
   ScratchDir dir;
   const nlohmann::json j = {{"asset", {{"version", 2}}}, {"meshes", nlohmann::json::array()}};
   testing::writeFile(dir / "n2.gltf", j.dump());
-  EXPECT_EQ(testing::errorOf([&] { loadModel(dir / "n2.gltf"); }),
-            dir / "n2.gltf" +
-                ": /asset/version: expected a string such as \"2.0\", not 2 (a number is read as glTF 1.0 only in [1, 2))");
+  EXPECT_EQ(
+      testing::errorOf([&] { loadModel(dir / "n2.gltf"); }),
+      dir / "n2.gltf" +
+          ": /asset/version: expected a string such as \"2.0\", not 2 (a number is read as glTF 1.0 only in [1, 2))");
 }
 
 }  // namespace

@@ -18,10 +18,13 @@ using testing::ScratchDir;
 // (written beside it), in the object `name`.
 void writeTriangle(const ScratchDir& dir, const std::string& file, const std::string& name = "tri") {
   testing::writeChecker((std::filesystem::path(dir / file).parent_path() / "tex.png").string(), 2, 2);
-  testing::writeFile(dir / file, "AC3Db\nMATERIAL \"white\" rgb 1 1 1 amb 0 0 0 emis 0 0 0 spec 0 0 0 shi 0 trans 0\n"
-                                 "OBJECT world\nkids 1\nOBJECT poly\nname \"" + name + "\"\ntexture \"tex.png\"\n"
-                                 "numvert 3\n0 0 0\n1 0 0\n0 1 0\nnumsurf 1\nSURF 0x10\nmat 0\nrefs 3\n"
-                                 "0 0 0\n1 1 0\n2 0 1\nkids 0\n");
+  testing::writeFile(dir / file,
+                     "AC3Db\nMATERIAL \"white\" rgb 1 1 1 amb 0 0 0 emis 0 0 0 spec 0 0 0 shi 0 trans 0\n"
+                     "OBJECT world\nkids 1\nOBJECT poly\nname \"" +
+                         name +
+                         "\"\ntexture \"tex.png\"\n"
+                         "numvert 3\n0 0 0\n1 0 0\n0 1 0\nnumsurf 1\nSURF 0x10\nmat 0\nrefs 3\n"
+                         "0 0 0\n1 1 0\n2 0 1\nkids 0\n");
 }
 
 std::string writeManifest(const ScratchDir& dir, const nlohmann::json& models, const std::string& name = "scene.json") {
@@ -105,8 +108,9 @@ TEST(SceneManifest, ADirectoryIsEveryModelFileInItSortedByNameWithIdentityTransf
   EXPECT_EQ(m.objects[1].name, "bee");
   EXPECT_EQ(corners(m, 1), (std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}));
   std::filesystem::create_directories(dir.path / "empty");
-  EXPECT_EQ(errorOf([&] { loadModel(dir / "empty"); }),
-            dir / "empty" + ": no model file in this directory (.gltf .glb .obj .ac .acc .ac3d .dae .fbx .3ds .ply .stl)");
+  EXPECT_EQ(
+      errorOf([&] { loadModel(dir / "empty"); }),
+      dir / "empty" + ": no model file in this directory (.gltf .glb .obj .ac .acc .ac3d .dae .fbx .3ds .ply .stl)");
 }
 
 TEST(SceneManifest, BadJsonIsAnErrorNamingTheLineAndColumn) {
@@ -125,7 +129,9 @@ TEST(SceneManifest, EveryMalformedEntryIsAnErrorNamingTheManifestAndTheJsonPoint
     testing::writeFile(path, doc.dump());
     return errorOf([&] { loadModel(path); });
   };
-  const auto withModels = [](const nlohmann::json& models) { return nlohmann::json{{"schema", 1}, {"models", models}}; };
+  const auto withModels = [](const nlohmann::json& models) {
+    return nlohmann::json{{"schema", 1}, {"models", models}};
+  };
   const nlohmann::json a = {{"file", "a.ac"}};
   EXPECT_EQ(error(nlohmann::json::array()), path + ": a scene manifest is a JSON object, not []");
   EXPECT_EQ(error({{"models", {a}}}), path + ": /schema: missing: a scene manifest says \"schema\": 1");
@@ -139,8 +145,10 @@ TEST(SceneManifest, EveryMalformedEntryIsAnErrorNamingTheManifestAndTheJsonPoint
   EXPECT_EQ(error(withModels({a, "a.ac"})), path + ": /models/1: expected an object with \"file\", got \"a.ac\"");
   EXPECT_EQ(error(withModels({{{"name", "x"}}})), path + ": /models/0/file: missing: the model file of this entry");
   EXPECT_EQ(error(withModels({{{"file", 3}}})), path + ": /models/0/file: expected a file name, got 3");
-  EXPECT_EQ(error(withModels({a, {{"file", "a.ac"}, {"rotate", {0, 0, 0}}}})),
-            path + ": /models/1/rotate: unknown key (an entry has file, name, and transform or translation / rotation / scale)");
+  EXPECT_EQ(
+      error(withModels({a, {{"file", "a.ac"}, {"rotate", {0, 0, 0}}}})),
+      path +
+          ": /models/1/rotate: unknown key (an entry has file, name, and transform or translation / rotation / scale)");
   EXPECT_EQ(error(withModels({a, a, a, {{"file", "a.ac"}, {"transform", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}}}})),
             path + ": /models/3/transform: expected 16 numbers, got 12");
   EXPECT_EQ(error(withModels({{{"file", "a.ac"}, {"translation", {1, "a", 3}}}})),
@@ -150,29 +158,35 @@ TEST(SceneManifest, EveryMalformedEntryIsAnErrorNamingTheManifestAndTheJsonPoint
   EXPECT_EQ(error(withModels({{{"file", "a.ac"}, {"scale", {1, 0, 1}}}})),
             path + ": /models/0/scale/1: 0 would flatten the model");
   EXPECT_EQ(error(withModels({{{"file", "a.ac"}, {"name", 5}}})), path + ": /models/0/name: expected a string, got 5");
-  EXPECT_EQ(error(withModels({{{"file", "a.ac"}, {"transform", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}},
-                               {"scale", {2, 2, 2}}}})),
-            path + ": /models/0: has both transform and translation / rotation / scale: give one or the other");
+  EXPECT_EQ(
+      error(withModels(
+          {{{"file", "a.ac"}, {"transform", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}}, {"scale", {2, 2, 2}}}})),
+      path + ": /models/0: has both transform and translation / rotation / scale: give one or the other");
   // A row-major matrix with its translation in elements 3, 7, 11.
   EXPECT_EQ(error(withModels({{{"file", "a.ac"}, {"transform", {1, 0, 0, 5, 0, 1, 0, 6, 0, 0, 1, 7, 0, 0, 0, 1}}}})),
-            path + ": /models/0/transform: not affine: elements 3, 7, 11, 15 (the last row, column-major as glTF's "
-                   "node.matrix) must be 0 0 0 1, got [5.0,6.0,7.0,1.0] (a row-major matrix puts its translation there)");
+            path +
+                ": /models/0/transform: not affine: elements 3, 7, 11, 15 (the last row, column-major as glTF's "
+                "node.matrix) must be 0 0 0 1, got [5.0,6.0,7.0,1.0] (a row-major matrix puts its translation there)");
   EXPECT_EQ(error(withModels({a, {{"file", "missing.ac"}}})),
             path + ": /models/1/file: 'missing.ac' (resolved to '" + dir / "missing.ac" + "') does not exist");
   std::filesystem::create_directories(dir.path / "sub");
   EXPECT_EQ(error(withModels({{{"file", "sub"}}})),
             path + ": /models/0/file: 'sub' is a directory: a manifest lists model files, not scenes");
   // A manifest listing itself (or any manifest) is refused before anything is loaded: no cycle is possible.
-  EXPECT_EQ(error(withModels({{{"file", "scene.json"}}})),
-            path + ": /models/0/file: 'scene.json' is a scene manifest: manifests do not nest (so they cannot form a cycle)");
+  EXPECT_EQ(
+      error(withModels({{{"file", "scene.json"}}})),
+      path + ": /models/0/file: 'scene.json' is a scene manifest: manifests do not nest (so they cannot form a cycle)");
 }
 
 TEST(SceneManifest, AnErrorInsideAModelNamesTheEntryAndThenTheModelsOwnError) {
   ScratchDir dir;
   writeTriangle(dir, "a.ac");
   testing::writeFile(dir / "bad.ac", "AC3Db\nOBJECT world\nkids 1\n");
-  EXPECT_EQ(errorOf([&] { loadModel(writeManifest(dir, {{{"file", "a.ac"}}, {{"file", "bad.ac"}}})); }),
-            dir / "scene.json" + ": /models/1: " + dir / "bad.ac" + ":3: kids 1 cannot fit in the 0 bytes that follow (a line takes 2 at least)");
+  EXPECT_EQ(errorOf([&] {
+              loadModel(writeManifest(dir, {{{"file", "a.ac"}}, {{"file", "bad.ac"}}}));
+            }),
+            dir / "scene.json" + ": /models/1: " + dir / "bad.ac" +
+                ":3: kids 1 cannot fit in the 0 bytes that follow (a line takes 2 at least)");
 }
 
 TEST(SceneManifest, TheMergedTrianglesAreCheckedAgainstTheBudget) {
@@ -180,7 +194,9 @@ TEST(SceneManifest, TheMergedTrianglesAreCheckedAgainstTheBudget) {
   writeTriangle(dir, "a.ac");
   ResourceLimits limits;
   limits.modelTriangles = 1;  // each file alone is within it
-  EXPECT_CONTAINS(errorOf([&] { loadModel(writeManifest(dir, {{{"file", "a.ac"}}, {{"file", "a.ac"}}}), limits); }),
+  EXPECT_CONTAINS(errorOf([&] {
+                    loadModel(writeManifest(dir, {{{"file", "a.ac"}}, {{"file", "a.ac"}}}), limits);
+                  }),
                   dir / "scene.json" + ": needs 2 triangles, over the limit of 1");
 }
 
