@@ -393,7 +393,10 @@ CitySummary generateCity(const CityOptions& o) {
                                                            : city::buildChemnitz(n, o.seed, o.textureSize);
   CitySummary s;
   s.buildings = n;
-  city::writeScene(scene, o, s);
+  if (o.splitPerBuilding)
+    city::writeSplitScene(scene, o, s);
+  else
+    city::writeScene(scene, o, s);
   s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return s;
 }

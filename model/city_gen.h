@@ -45,10 +45,13 @@ struct CityOptions {
   CityImageFormat format = CityImageFormat::Png;
   std::string outDir;
   bool progress = true;  // progress lines on stderr for long runs
+  // One glTF per building (and one for the ground) under DIR/parts/ plus the scene manifest
+  // DIR/<preset>.json instead of DIR/<preset>.gltf; CitySummary::gltf is then the manifest.
+  bool splitPerBuilding = false;
 };
 
 struct CitySummary {
-  std::string gltf;                // path of the .gltf file
+  std::string gltf;                // path of the .gltf file (splitPerBuilding: of the scene manifest)
   std::vector<std::string> files;  // every file written, relative to outDir
   uint32_t buildings = 0;
   uint64_t textures = 0, rgbaTextures = 0, triangles = 0, vertices = 0, primitives = 0;

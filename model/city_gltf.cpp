@@ -5,6 +5,7 @@
 // last, so its presence means the rest is complete.
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
+#include <tiny_gltf.h>
 
 #include <atomic>
 #include <cstdio>
@@ -12,11 +13,14 @@
 #include <filesystem>
 #include <fstream>
 #include <glm/common.hpp>
+#include <map>
 #include <mutex>
 
 #include "base/atomic_file.h"
 #include "base/det_math.h"
 #include "model/city_scene.h"
+#include "model/gltf_graph.h"
+#include "model/loaders.h"
 #include "raster/command_list.h"
 #include "raster/image_io.h"
 
@@ -54,13 +58,15 @@ void append(std::vector<uint8_t>& bin, const std::vector<T>& v) {
 
 }  // namespace
 
-void writeScene(const Scene& scene, const CityOptions& o, CitySummary& s) {
+namespace {
+
+// Renders and writes every texture; returns the file names relative to the output directory.
+std::vector<std::string> writeTextures(const Scene& scene, const CityOptions& o, CitySummary& s) {
   const std::string dir = o.outDir;
   std::error_code ec;
   fs::create_directories(dir + "/textures", ec);
   if (ec) throw Error(dir + "/textures: cannot create the output directory: " + ec.message());
 
-  // Textures.
   const bool jpg = o.format == CityImageFormat::Jpg;
   const size_t nt = scene.textures.size();
   std::vector<std::string> names(nt);
@@ -91,7 +97,16 @@ void writeScene(const Scene& scene, const CityOptions& o, CitySummary& s) {
     s.files.push_back(names[i]);
   }
   s.textures = nt;
+  return names;
+}
 
+// Writes dir/<scene.name>.gltf and .bin. Texture i of `scene` is image `imageUris[i]` and its material is
+// named m<textureIds[i]> (the numbering of the whole city, which a part of it keeps).
+std::string writeGltf(const Scene& scene, const std::vector<std::string>& imageUris,
+                      const std::vector<uint32_t>& textureIds, const std::string& dir, const CityOptions& o,
+                      CitySummary& s) {
+  const bool jpg = o.format == CityImageFormat::Jpg;
+  const size_t nt = scene.textures.size();
   // Geometry: three bufferViews (positions, texcoords, indices) in one .bin.
   std::vector<uint8_t> pos, uv, idx;
   nlohmann::json accessors = nlohmann::json::array(), meshes = nlohmann::json::array(), nodes = nlohmann::json::array();
@@ -149,7 +164,7 @@ void writeScene(const Scene& scene, const CityOptions& o, CitySummary& s) {
                  images = nlohmann::json::array();
   for (size_t i = 0; i < nt; ++i) {
     const TexSpec& t = scene.textures[i];
-    nlohmann::json m = {{"name", fmt::format("m{}", i)},
+    nlohmann::json m = {{"name", fmt::format("m{}", textureIds[i])},
                         {"pbrMetallicRoughness",
                          {{"baseColorTexture", {{"index", i}}}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}}};
     if (t.kind == TexKind::Fence || t.kind == TexKind::Tree)
@@ -157,7 +172,7 @@ void writeScene(const Scene& scene, const CityOptions& o, CitySummary& s) {
     if (t.kind == TexKind::Glass) m["alphaMode"] = "BLEND", m["doubleSided"] = true;
     materials.push_back(m);
     textures.push_back({{"source", i}, {"sampler", 0}});
-    images.push_back({{"uri", names[i]}});
+    images.push_back({{"uri", imageUris[i]}});
   }
   for (const ColourMaterial& c : scene.colours)  // untextured: a base colour factor only
     materials.push_back({{"name", c.name},
@@ -171,7 +186,8 @@ void writeScene(const Scene& scene, const CityOptions& o, CitySummary& s) {
       {"asset",
        {{"version", "2.0"},
         {"generator", fmt::format("tessera city --preset {} --buildings {} --seed {} --texture-size {} --format {}",
-                                  scene.name, scene.buildings, o.seed, o.textureSize, jpg ? "jpg" : "png")}}},
+                                  cityPresetName(o.preset), scene.buildings, o.seed, o.textureSize,
+                                  jpg ? "jpg" : "png")}}},
       {"scene", 0},
       {"scenes", {{{"name", scene.name}, {"nodes", scene.roots}}}},
       {"nodes", nodes},
@@ -195,10 +211,106 @@ void writeScene(const Scene& scene, const CityOptions& o, CitySummary& s) {
   const std::string json = root.dump() + "\n";
   const std::string gltf = dir + "/" + scene.name + ".gltf";
   writeBytes(gltf, json.data(), json.size());
-  s.files.push_back(binName);
-  s.files.push_back(scene.name + ".gltf");
   s.bytesOnDisk += bin.size() + json.size();
-  s.gltf = gltf;
+  return gltf;
+}
+
+// The part of `scene` that node `n` holds: its primitives at the origin of its own frame (no transform),
+// with only the textures and colour materials they use, in order of first use.
+struct Part {
+  Scene scene;
+  std::vector<std::string> imageUris;  // relative to the part's file
+  std::vector<uint32_t> textureIds;
+};
+
+Part partOf(const Scene& scene, const Node& n, const std::vector<std::string>& names) {
+  Part p;
+  p.scene.name = n.name;
+  p.scene.buildings = scene.buildings;
+  p.scene.roots = {0};
+  p.scene.nodes.push_back(Node{.name = n.name});
+  const size_t nt = scene.textures.size();
+  std::map<uint32_t, uint32_t> textures, colours;  // the city's index -> the part's
+  for (const Primitive& prim : n.primitives) {
+    if (prim.material < nt && textures.emplace(prim.material, uint32_t(textures.size())).second) {
+      p.scene.textures.push_back(scene.textures[prim.material]);
+      p.imageUris.push_back("../" + names[prim.material]);
+      p.textureIds.push_back(prim.material);
+    }
+    if (prim.material >= nt && colours.emplace(prim.material, uint32_t(colours.size())).second)
+      p.scene.colours.push_back(scene.colours[prim.material - nt]);
+  }
+  for (const Primitive& prim : n.primitives) {
+    Primitive q = prim;
+    q.material = prim.material < nt ? textures.at(prim.material) : uint32_t(textures.size()) + colours.at(prim.material);
+    p.scene.nodes[0].primitives.push_back(std::move(q));
+  }
+  return p;
+}
+
+// The local transform of a city node exactly as the glTF loader reads the node this writer writes
+// (gltf::nodeTransform on the same doubles), so a part placed by the manifest lands on the same bits.
+glm::dmat4 localTransform(const Node& n) {
+  tinygltf::Node t;
+  if (n.translation != std::array<double, 3>{0, 0, 0}) t.translation = {n.translation[0], n.translation[1], n.translation[2]};
+  if (n.yaw != 0.0) t.rotation = {0.0, double(float(detSin(n.yaw / 2))), 0.0, double(float(detCos(n.yaw / 2)))};
+  return detail::gltf::nodeTransform(t);
+}
+
+}  // namespace
+
+void writeSplitScene(const Scene& scene, const CityOptions& o, CitySummary& s) {
+  const std::vector<std::string> names = writeTextures(scene, o, s);
+  const std::string partsDir = o.outDir + "/parts";
+  std::error_code ec;
+  fs::create_directories(partsDir, ec);
+  if (ec) throw Error(partsDir + ": cannot create the output directory: " + ec.message());
+  // Nodes in the loader's depth-first pre-order with their world transforms (composed as the loader
+  // composes them), so the manifest lists the parts in the order the one-file city's meshes come in.
+  nlohmann::json models = nlohmann::json::array();
+  struct Frame {
+    uint32_t node;
+    glm::dmat4 parent;
+  };
+  std::vector<Frame> stack;
+  for (auto it = scene.roots.rbegin(); it != scene.roots.rend(); ++it) stack.push_back({*it, glm::dmat4(1.0)});
+  while (!stack.empty()) {
+    const Frame f = stack.back();
+    stack.pop_back();
+    const Node& n = scene.nodes.at(f.node);
+    const glm::dmat4 world = detail::compose(f.parent, localTransform(n));
+    for (auto it = n.children.rbegin(); it != n.children.rend(); ++it) stack.push_back({*it, world});
+    if (n.primitives.empty()) continue;
+    const Part p = partOf(scene, n, names);
+    writeGltf(p.scene, p.imageUris, p.textureIds, partsDir, o, s);
+    s.files.push_back("parts/" + n.name + ".bin");
+    s.files.push_back("parts/" + n.name + ".gltf");
+    nlohmann::json m = nlohmann::json::array();
+    for (int i = 0; i < 16; ++i) m.push_back(world[i / 4][i % 4]);  // column-major, as the manifest reads it
+    models.push_back({{"file", "parts/" + n.name + ".gltf"}, {"name", n.name}, {"transform", m}});
+  }
+  const nlohmann::json manifest = {
+      {"schema", 1},
+      {"comment", fmt::format("tessera city --preset {} --buildings {} --seed {} --texture-size {} --split-per-building",
+                              cityPresetName(o.preset), scene.buildings, o.seed, o.textureSize)},
+      {"models", models}};
+  // One entry a line (nlohmann's indented dump puts every number of a matrix on its own line).
+  std::string json = "{\n  \"schema\": 1,\n  \"comment\": " + manifest["comment"].dump() + ",\n  \"models\": [\n";
+  for (size_t i = 0; i < models.size(); ++i) json += "    " + models[i].dump() + (i + 1 < models.size() ? ",\n" : "\n");
+  json += "  ]\n}\n";
+  s.gltf = o.outDir + "/" + scene.name + ".json";
+  writeBytes(s.gltf, json.data(), json.size());  // last: its presence means the parts are complete
+  s.files.push_back(scene.name + ".json");
+  s.bytesOnDisk += json.size();
+}
+
+void writeScene(const Scene& scene, const CityOptions& o, CitySummary& s) {
+  const std::vector<std::string> names = writeTextures(scene, o, s);
+  std::vector<uint32_t> ids(names.size());
+  for (size_t i = 0; i < ids.size(); ++i) ids[i] = uint32_t(i);
+  s.gltf = writeGltf(scene, names, ids, o.outDir, o, s);
+  s.files.push_back(scene.name + ".bin");
+  s.files.push_back(scene.name + ".gltf");
 }
 
 }  // namespace tessera::model::city

@@ -68,6 +68,10 @@ Scene buildChemnitz(uint32_t buildings, uint64_t seed, uint32_t textureSize);
 
 // Writes the textures (in parallel) and the .gltf + .bin; fills the file and size fields of `s`.
 void writeScene(const Scene& scene, const CityOptions& options, CitySummary& s);
+// The same textures, and one glTF file per node with a mesh (every building, the ground) under DIR/parts/,
+// in the node's own frame, plus the scene manifest DIR/<name>.json that places each with its world
+// matrix (docs/model-import.md): loadModel() of it gives the one-file city's positions bit for bit.
+void writeSplitScene(const Scene& scene, const CityOptions& options, CitySummary& s);
 
 // splitmix64: the generator's only source of randomness.
 inline uint64_t mix(uint64_t x) {

@@ -6,11 +6,15 @@
 // diffuse (or glTF base colour) texture of each material is its base colour texture; textures
 // Assimp embeds ("*N") are kept in memory, external ones are resolved beside the model file and
 // checked to exist. Assimp stores v up; it is flipped to the glTF convention (v' = 1 - v).
+// A glTF 1.0 document whose asset.version load_gltf.cpp normalized is read from memory in place of
+// its file (ReplacedFileIO); its buffers and images are still read beside the file.
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
+#include <assimp/MemoryIOWrapper.h>
 #include <filesystem>
 #include <map>
 
@@ -212,8 +216,26 @@ class AssimpBuilder {
 
 }  // namespace
 
-Model loadAssimp(const std::string& path, const ResourceLimits&) {  // limits: checked by loadModel() on the result
+namespace {
+
+// Assimp's file system with one file replaced by text in memory; the importer owns it.
+class ReplacedFileIO : public Assimp::DefaultIOSystem {
+ public:
+  ReplacedFileIO(std::string path, const std::string& text) : path_(std::move(path)), text_(text) {}
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    if (file && path_ == file)
+      return new Assimp::MemoryIOStream(reinterpret_cast<const uint8_t*>(text_.data()), text_.size());
+    return Assimp::DefaultIOSystem::Open(file, mode);
+  }
+
+ private:
+  std::string path_;
+  const std::string& text_;  // outlives the importer (loadAssimp's argument)
+};
+
+Model read(const std::string& path, const std::string* text) {
   Assimp::Importer importer;
+  if (text) importer.SetIOHandler(new ReplacedFileIO(path, *text));
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const aiScene* sc = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_SortByPType);
   if (!sc || !sc->mRootNode || (sc->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
@@ -224,5 +246,11 @@ Model loadAssimp(const std::string& path, const ResourceLimits&) {  // limits: c
   AssimpBuilder(path, *sc, out).run();
   return out;
 }
+
+}  // namespace
+
+// limits: checked by loadModel() on the result
+Model loadAssimp(const std::string& path, const ResourceLimits&) { return read(path, nullptr); }
+Model loadAssimp(const std::string& path, const ResourceLimits&, const std::string& text) { return read(path, &text); }
 
 }  // namespace tessera::model::detail

@@ -22,6 +22,7 @@
 #include "model/gltf_accessors.h"
 #include "model/gltf_checks.h"
 #include "model/gltf_graph.h"
+#include "model/gltf_version.h"
 #include "model/loaders.h"
 #include "raster/command_list.h"
 #include "base/det_math.h"
@@ -409,12 +410,25 @@ Model loadGltf(const std::string& path, const ResourceLimits& limits) {
     throw Error(path + ": not valid JSON: " + e.what());
   }
   if (!root.is_object()) fail(path, "/", "the glTF root must be a JSON object");
-  // glTF 1.0 (objects keyed by id instead of arrays) goes to Assimp, which reads it.
+  // glTF 1.0 goes to Assimp, which reads it; one without a string version is handed over with "1.0" put
+  // in, since Assimp refuses it otherwise (gltf_version.h).
+  switch (gltf::generationOf(root)) {
+    case gltf::Generation::One:
+      return loadAssimp(path, limits);
+    case gltf::Generation::OneWithoutStringVersion: {
+      Model m = loadAssimp(path, limits, gltf::gltf1WithStringVersion(root));
+      m.notes.push_back("glTF 1.0 without a string asset.version: read as version \"1.0\"");
+      return m;
+    }
+    case gltf::Generation::Two:
+      break;
+  }
   const nlohmann::json::json_pointer vp("/asset/version");
-  const bool v1 = root.contains(vp) ? root.at(vp).is_string() && root.at(vp).get<std::string>().starts_with("1")
-                                    : root.contains("meshes") && root["meshes"].is_object();
-  if (v1) return loadAssimp(path, limits);
-  if (!root.contains(vp) || !root.at(vp).is_string()) fail(path, "/asset/version", "missing (required by glTF 2.0)");
+  if (!root.contains(vp)) fail(path, "/asset/version", "missing (required by glTF 2.0)");
+  if (!root.at(vp).is_string())
+    fail(path, "/asset/version",
+         "expected a string such as \"2.0\", not " + root.at(vp).dump().substr(0, 40) +
+             " (a number is read as glTF 1.0 only in [1, 2))");
   if (!root.at(vp).get<std::string>().starts_with("2"))
     fail(path, "/asset/version", "'" + root.at(vp).get<std::string>() + "' is not 2.x");
   gltf::checkDocument(path, root, limits);  // before tinygltf, which would accept or crash on what it refuses

@@ -21,6 +21,9 @@ namespace tessera::model::detail {
 Model loadGltf(const std::string& path, const ResourceLimits& limits);    // load_gltf.cpp; glTF 1.0 -> loadAssimp
 Model loadObj(const std::string& path, const ResourceLimits& limits);     // load_obj.cpp
 Model loadAssimp(const std::string& path, const ResourceLimits& limits);  // load_assimp.cpp
+// The same, with Assimp reading `text` in place of the file `path` itself (files beside it, such as
+// buffers and images, are still read from the disk): a glTF 1.0 document whose version was normalized.
+Model loadAssimp(const std::string& path, const ResourceLimits& limits, const std::string& text);
 // load_ac3d.cpp: AC3D .ac and TORCS .acc, parsed without Assimp. Throws Error("<file>:<line>: <reason>")
 // for malformed input and overLimitMessage() when the model exceeds `limits`.
 Model loadAc3d(const std::string& path, const ResourceLimits& limits);

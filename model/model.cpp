@@ -12,6 +12,7 @@
 
 #include "base/error.h"
 #include "model/loaders.h"
+#include "model/scene_manifest.h"
 #include "raster/image_module.h"
 
 namespace tessera::model {
@@ -134,7 +135,9 @@ void readHeadersWithinBudget(Model& m, const ResourceLimits& limits) {
 
 }  // namespace
 
-Model loadModel(const std::string& path, const ResourceLimits& limits) {
+namespace detail {
+
+Model loadModelFile(const std::string& path, const ResourceLimits& limits) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw Error(path + ": no such model file");
   char magic[4] = {};
@@ -155,6 +158,23 @@ Model loadModel(const std::string& path, const ResourceLimits& limits) {
     m = detail::loadObj(path, limits);
   else
     m = detail::loadAssimp(path, limits);
+  m.source = path;
+  return m;
+}
+
+}  // namespace detail
+
+// The one place where a path becomes a Model, so every command that takes a model takes a scene too.
+Model loadModel(const std::string& path, const ResourceLimits& limits) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw Error(path + ": no such model file");
+  Model m;
+  if (fs::is_directory(path, ec))
+    m = detail::mergeScene(detail::readSceneDirectory(path), limits);
+  else if (detail::isScenePath(path))
+    m = detail::mergeScene(detail::readSceneManifest(path), limits);
+  else
+    m = detail::loadModelFile(path, limits);
   m.source = path;
   // The loaders refuse geometry over the budgets before reading it; this repeats the check on the result,
   // for any loader that counts less precisely.

@@ -137,7 +137,9 @@ struct Image : RgbaImage {
   bool usesAlpha = false;  // some texel has alpha < 255
 };
 
-// Reads a model file. The loader is chosen by content first (a .glb / glTF 1.0 / glTF 2.0 header, an
+// Reads a model file, or a scene of several: a scene manifest (a .json file) or a directory of model
+// files, merged into one Model (model/scene_manifest.h, docs/model-import.md "Scenes of several files").
+// The loader of a file is chosen by content first (a .glb / glTF 1.0 / glTF 2.0 header, an
 // AC3D header), then by extension: .gltf / .glb -> tinygltf (glTF 1.0 goes to Assimp), .obj ->
 // tinyobjloader, .ac / .acc / .ac3d -> the AC3D reader, anything else -> Assimp. Image files are
 // checked to exist and their headers are read (not decoded).

@@ -256,6 +256,52 @@ PY
     [ "$(json_field info.json "['triangles']")" -ge 1 ] || fail "info reports no triangles"
     [ "$(json_field info.json "['blocks']['atlas']['count']")" -ge 1 ] || fail "info reports no atlas blocks"
     ;;
+  scene_manifest_and_directory_work_in_every_model_command)
+    # A berlin city written whole and split per building (docs/model-import.md "Scenes of several files"):
+    # every command that takes a model takes the manifest (loadModel reads it), and the split city gives
+    # the same atlas tree bytes, the same TAB and RTTA images and the same TAB batches as the one-file city.
+    "$tessera" city --preset berlin --buildings 5 --texture-size 32 -o one --quiet > /dev/null
+    "$tessera" city --preset berlin --buildings 5 --texture-size 32 -o split --split-per-building --load-back --quiet > split.json
+    [ "$(json_field split.json "['gltf']")" = "split/berlin.json" ] || fail "the split city's summary does not name its manifest"
+    [ "$(json_field split.json "['load_back']['triangles']")" = 104 ] || fail "the manifest loads with another triangle count"
+    [ -s split/parts/building_4.gltf ] && [ -s split/parts/ground.gltf ] || fail "the parts were not written"
+    "$tessera" mta build one/berlin.gltf -o one.mta --d-min 50 --quiet > /dev/null
+    "$tessera" mta build split/berlin.json -o split.mta --d-min 50 --quiet > /dev/null
+    cmp -s one.mta split.mta || fail "the atlas tree of the manifest differs from the one-file city's"
+    "$tessera" mta runs split.mta --frames 2 --size 96x72 -o runs --quiet > runs.json
+    "$tessera" texel split/berlin.json --frames 2 --size 96x72 --save-every 0 -o texel --quiet > texel.json
+    [ -s texel/tree.mta ] || fail "texel did not build the manifest's tree"
+    for v in one split; do
+      scene=one/berlin.gltf; [ $v = split ] && scene=split/berlin.json
+      "$tessera" tab build "$scene" -o $v.tab --quiet > tab_$v.json
+      "$tessera" tab render $v.tab --both --frames 3 --size 96x72 --save-every 2 -o tab_$v --quiet > /dev/null
+      "$tessera" rtta render "$scene" --objects node --frames 2 --size 96x72 --save-every 1 -o rtta_$v --quiet > rtta_$v.json
+    done
+    [ "$(json_field rtta_split.json "['object_count']")" = 6 ] || fail "RTTA does not see 5 buildings and the ground"
+    for k in arrays geometry_batches input_batches output_batches triangles textures; do
+      [ "$(json_field tab_one.json "['$k']")" = "$(json_field tab_split.json "['$k']")" ] || fail "TAB's $k differ"
+    done
+    n=0
+    for f in tab_one/*_0*.png rtta_one/*_0*.png; do  # plot.png shows timings
+      [ -e "$f" ] || continue
+      cmp -s "$f" "${f/_one/_split}" || fail "$f differs between the one-file city and its manifest"
+      n=$((n + 1))
+    done
+    [ $n -ge 14 ] || fail "only $n images compared"
+    # A directory of model files: every part, identity transforms, the same triangles.
+    "$tessera" tab build split/parts -o dir.tab --quiet > dir.json
+    [ "$(json_field dir.json "['triangles']")" = 104 ] || fail "the directory does not give the 104 triangles"
+    # Bad manifests exit 2 naming the manifest and the JSON pointer, in every command.
+    printf '{"schema": 1, "models": [{"file": "split/parts/ground.gltf", "transform": [1, 0, 0]}]}' > bad.json
+    refused 2 "bad.json: /models/0/transform: expected 16 numbers, got 3" "$tessera" mta build bad.json -o bad.mta --quiet
+    refused 2 "bad.json: /models/0/transform: expected 16 numbers, got 3" "$tessera" tab build bad.json -o bad.tab --quiet
+    refused 2 "bad.json: /models/0/transform: expected 16 numbers, got 3" "$tessera" rtta render bad.json -o bad --quiet
+    refused 2 "bad.json: /models/0/transform: expected 16 numbers, got 3" "$tessera" texel bad.json -o bad --quiet
+    printf '{"schema": 1,\n "models": [ oops ]}' > syntax.json
+    refused 2 "syntax.json:2:14: not valid JSON" "$tessera" mta build syntax.json -o bad.mta --quiet
+    printf '{"schema": 1, "models": [{"file": "split/berlin.json"}]}' > nested.json
+    refused 2 "nested.json: /models/0/file: 'split/berlin.json' is a scene manifest" "$tessera" tab build nested.json -o bad.tab --quiet
+    ;;
   corrupted_atlas_tree_is_a_clear_error)
     "$tessera" city --preset berlin --buildings 4 -o city --quiet > /dev/null
     "$tessera" mta build "$(ls city/*.gltf | head -1)" -o tree.mta --d-min 50 --quiet > /dev/null

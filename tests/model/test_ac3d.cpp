@@ -314,6 +314,43 @@ TEST(Ac3d, ATorcsAccFileUsesItsBaseTexture) {
             m.notes.end());
 }
 
+// A TORCS track object (the syntax of grloadac.cpp / accc): a base texture and a tiled layer, so every
+// refs line holds two u v pairs; the second pair is the layer's and must not reach the texcoords.
+std::string accTrack(const std::string& base) {
+  return "AC3Db\n" + kWhite + "OBJECT world\nkids 1\nOBJECT poly\nname \"road\"\ntexture \"" + base +
+         "\" base\ntexture \"tiled.png\" tiled\ntexture empty_texture_no_mapping skids\n"
+         "numvert 3\n0 0 0\n4 0 0\n0 4 0\nnumsurf 1\nSURF 0x10\nmat 0\nrefs 3\n"
+         "0 0.25 0.5 9 9\n1 0.75 0.5 9 9\n2 0.25 1 9 9\nkids 0\n";
+}
+
+TEST(Ac3d, AnAccTrackUsesTheFirstUvPairOfEachRefForItsBaseTextureAndIgnoresTheLayerPairs) {
+  ScratchDir dir;
+  testing::writeChecker(dir / "asphalt.png", 2, 2);
+  const Model m = load(dir, "track.acc", accTrack("asphalt.png"));  // tiled.png does not exist: never read
+  ASSERT_EQ(m.textures.size(), 1u);
+  EXPECT_EQ(m.textures[0].uri, "asphalt.png");
+  ASSERT_EQ(m.meshes.size(), 1u);
+  EXPECT_EQ(m.materials[m.meshes[0].material].baseColorTexture, 0);
+  // Hand-derived: the base pairs (0.25, 0.5), (0.75, 0.5), (0.25, 1) with v flipped; no 9 anywhere.
+  EXPECT_EQ(m.meshes[0].texcoords,
+            (std::vector<glm::vec2>{glm::vec2(0.25f, 0.5f), glm::vec2(0.75f, 0.5f), glm::vec2(0.25f, 0.0f)}));
+}
+
+TEST(Ac3d, AnAccTrackWithAMissingBaseTextureNamesTheFileAndTheLineOfItsBaseTexture) {
+  ScratchDir dir;
+  EXPECT_EQ(loadError(dir, "track.acc", accTrack("missing.png")),
+            dir / "track.acc" + ":7: texture of object 'road': texture file '" + dir / "missing.png" +
+                "' (written as 'missing.png') does not exist");
+}
+
+TEST(Ac3d, AnAccRefsLineWithHalfAUvPairIsAnErrorNamingItsLine) {
+  ScratchDir dir;
+  std::string text = accTrack("asphalt.png");
+  text.replace(text.find("1 0.75 0.5 9 9"), 14, "1 0.75 0.5 9");
+  EXPECT_EQ(loadError(dir, "track.acc", text),
+            dir / "track.acc" + ":19: a refs line holds a vertex index and u v pairs, not 4 numbers");
+}
+
 TEST(Ac3d, Ac3dcTokensAreReadAndUnknownOnesAreSkippedWithANote) {
   ScratchDir dir;
   const std::string text =

@@ -1,5 +1,6 @@
 // `tessera city`: writes a deterministic synthetic city (Buchholz's "berlin" / "chemnitz" test scenes,
-// model/city_gen.h) as a glTF 2.0 file with its textures, and prints a JSON summary.
+// model/city_gen.h) as a glTF 2.0 file with its textures (or, with --split-per-building, one glTF per
+// building and a scene manifest), and prints a JSON summary.
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -23,6 +24,7 @@ struct CityArgs {
   std::string outDir;
   bool quiet = false;
   bool loadBack = false;
+  bool split = false;
 };
 
 void runCity(const CityArgs& a) {
@@ -36,6 +38,7 @@ void runCity(const CityArgs& a) {
   prepareOutputDirectory(a.outDir, "-o");
   o.outDir = a.outDir;
   o.progress = !a.quiet;
+  o.splitPerBuilding = a.split;
   const model::CitySummary s = model::generateCity(o);
   nlohmann::json j = s.toJson();
   j["preset"] = a.preset;
@@ -81,6 +84,9 @@ void addCityCommand(CLI::App& app) {
   city->add_flag("--quiet", a->quiet, "No progress lines on stderr");
   city->add_flag("--load-back", a->loadBack,
                  "Read the written glTF back with the model loader and report its counts and time");
+  city->add_flag("--split-per-building", a->split,
+                 "Write one glTF per building (and one for the ground) under DIR/parts/ and the scene manifest "
+                 "DIR/<preset>.json placing them, instead of DIR/<preset>.gltf (docs/model-import.md)");
   city->callback([a] { runCity(*a); });
 }
 
