@@ -382,6 +382,8 @@ def scene_manifest_seeds(out):
     write(os.path.join(out, "bad-unknown-key.json"), manifest([{"file": "a.glb", "matrix": []}]))
     write(os.path.join(out, "bad-schema-2.json"), '{"schema": 2, "models": [{"file": "a.glb"}]}\n')
     write(os.path.join(out, "bad-syntax.json"), '{"schema": 1,\n "models": [{"file": "a.glb"},]}\n')
+    write(os.path.join(out, "bad-number-beyond-double.json"),
+          '{"schema": 1, "models": [{"file": "a.glb", "scale": [1e309, 1, 1]}]}\n')
 
 
 # --- tab ----------------------------------------------------------------------------------------------
