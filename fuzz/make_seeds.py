@@ -360,6 +360,32 @@ far 5000
     write(os.path.join(out, "bad-eye-equals-target.path"), "tessera-camera-path 1\n1 2 3 1 2 3\n")
 
 
+# --- scene_manifest -----------------------------------------------------------------------------------
+def scene_manifest_seeds(out):
+    """Manifests over the fixtures fuzz/scene_manifest.cpp keeps beside its input: a.glb, c.obj,
+    parts/b.gltf (empty files), sub/ (a directory) and nested.json (a manifest)."""
+    def manifest(models, **extra):
+        return json.dumps(dict(schema=1, models=models, **extra), indent=1) + "\n"
+    write(os.path.join(out, "trs-two-models.json"), manifest(
+        [{"file": "a.glb", "name": "house", "translation": [10, 0, -2.5], "rotation": [0, 90, 0], "scale": [1, 1, 2]},
+         {"file": "parts/b.gltf", "rotation": [-45, 1e9, 0.5]}], comment="two models, degrees"))
+    write(os.path.join(out, "column-major-transform.json"), manifest(
+        [{"file": "c.obj", "transform": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 5, 6, 7, 1]}]))
+    write(os.path.join(out, "bad-row-major-transform.json"), manifest(
+        [{"file": "c.obj", "transform": [1, 0, 0, 5, 0, 1, 0, 6, 0, 0, 1, 7, 0, 0, 0, 1]}]))
+    write(os.path.join(out, "bad-nested-manifest.json"), manifest([{"file": "nested.json"}]))
+    write(os.path.join(out, "bad-directory-entry.json"), manifest([{"file": "sub"}]))
+    write(os.path.join(out, "bad-missing-file.json"), manifest([{"file": "none.glb"}]))
+    write(os.path.join(out, "bad-zero-scale.json"), manifest([{"file": "a.glb", "scale": [1, 0, 1]}]))
+    write(os.path.join(out, "bad-both-transforms.json"), manifest(
+        [{"file": "a.glb", "translation": [0, 0, 0], "transform": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]}]))
+    write(os.path.join(out, "bad-unknown-key.json"), manifest([{"file": "a.glb", "matrix": []}]))
+    write(os.path.join(out, "bad-schema-2.json"), '{"schema": 2, "models": [{"file": "a.glb"}]}\n')
+    write(os.path.join(out, "bad-syntax.json"), '{"schema": 1,\n "models": [{"file": "a.glb"},]}\n')
+    write(os.path.join(out, "bad-number-beyond-double.json"),
+          '{"schema": 1, "models": [{"file": "a.glb", "scale": [1e309, 1, 1]}]}\n')
+
+
 # --- tab ----------------------------------------------------------------------------------------------
 def tab_file(sections):
     """A .tab file (docs/tab-format.md) around the seven section payloads, with valid checksums."""
@@ -418,6 +444,7 @@ def main():
     ac3d_seeds(os.path.join(corpus, "ac3d"))
     camera_path_seeds(os.path.join(corpus, "camera_path"))
     tab_seeds(os.path.join(corpus, "tab"))
+    scene_manifest_seeds(os.path.join(corpus, "scene_manifest"))
     for target in sorted(os.listdir(corpus)):
         d = os.path.join(corpus, target)
         for name in sorted(os.listdir(d)):

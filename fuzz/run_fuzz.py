@@ -24,7 +24,7 @@ import subprocess
 import sys
 import time
 
-TARGETS = ["tframe", "mta", "gltf", "obj", "ac3d", "camera_path", "tab"]
+TARGETS = ["tframe", "mta", "gltf", "obj", "ac3d", "camera_path", "tab", "scene_manifest"]
 FINDING_PREFIXES = ("crash-", "timeout-", "oom-", "leak-", "slow-unit-")
 # Fork mode: "#95409: cov: 1812 ft: 2319 corp: 154 exec/s 6715 oom/timeout/crash: 0/0/0 time: 18s job: 4 ..."
 FORK_STATUS = re.compile(r"^#(\d+): cov: (\d+) ft: (\d+) corp: (\d+) exec/s:? (\d+) oom/timeout/crash: (\d+)/(\d+)/(\d+)"

@@ -54,6 +54,10 @@ class ManifestReader {
       doc = json::parse(text);
     } catch (const json::parse_error& e) {
       throw Error(path_ + ":" + position(text, e.byte) + ": not valid JSON: " + e.what());
+    } catch (const json::out_of_range& e) {
+      // A number beyond the range of a double (1e309) is out_of_range 406, not a parse_error, and carries
+      // no position; uncaught it ended `tessera` as an internal error (exit 3). Found by fuzz/scene_manifest.
+      throw Error(path_ + ": not valid JSON: a number beyond the range of a double: " + e.what());
     }
     if (!doc.is_object()) fail("", "a scene manifest is a JSON object, not " + shownValue(doc));
     for (const auto& [k, v] : doc.items())

@@ -19,7 +19,11 @@
 #include "mta/atlas_image.h"
 #include "mta/critical.h"
 #include "mta/paging_file.h"
+#include "mta/build_plan.h"
+#include "mta/output_budget.h"
+#include "mta/output_size.h"
 #include "mta/tree_build.h"
+#include "base/resource_limits.h"
 #include "raster/command_list.h"
 
 namespace tessera::mta {
@@ -99,7 +103,7 @@ struct ImageCache {
 struct OriginalPacker {
   PagingFileWriter& w;
   MtaMeta& meta;
-  uint64_t target;
+  OriginalBlockLayout layout;
   std::vector<uint8_t> cur;
   std::vector<size_t> pending;  // pieces waiting for the current block's index
   uint32_t firstImage = 0;
@@ -116,9 +120,11 @@ struct OriginalPacker {
     const size_t rowBytes = size_t(r.width) * r.channels;
     r.firstPiece = uint32_t(meta.pieces.size());
     for (uint32_t row = 0; row < r.height;) {
-      if (cur.size() + rowBytes > target && !cur.empty()) flush();
+      // The layout is the size estimate's own (output_size.h), so the estimate stays exact.
+      const OriginalBlockLayout::Piece p = layout.next(r.height - row, rowBytes);
+      if (p.closedBlockBytes) flush();
       if (cur.empty()) firstImage = image;
-      const uint32_t rows = uint32_t(std::min<uint64_t>(r.height - row, std::max<uint64_t>(1, (target - cur.size()) / rowBytes)));
+      const uint32_t rows = p.rows;
       pending.push_back(meta.pieces.size());
       meta.pieces.push_back(PieceRecord{image, 0, row, rows, cur.size()});
       const uint8_t* src = img.levels[0].data() + size_t(row) * r.width * 4;
@@ -181,12 +187,28 @@ void renderLeaf(const Scene& s, const Tree& tree, uint32_t node, uint32_t layer,
   }
 }
 
+// "45 s", "12 min 05 s", "3 h 20 min": the time left in progress lines.
+std::string formatDuration(double seconds) {
+  const uint64_t s = uint64_t(std::max(0.0, seconds) + 0.5);
+  char buf[48];
+  if (s < 60)
+    std::snprintf(buf, sizeof buf, "%llu s", (unsigned long long)s);
+  else if (s < 3600)
+    std::snprintf(buf, sizeof buf, "%llu min %02llu s", (unsigned long long)(s / 60), (unsigned long long)(s % 60));
+  else
+    std::snprintf(buf, sizeof buf, "%llu h %02llu min", (unsigned long long)(s / 3600), (unsigned long long)(s / 60 % 60));
+  return buf;
+}
+
 }  // namespace
 
-BuildReport buildMta(const Scene& scene, const BuildParams& params, const std::string& outPath) {
+BuildReport buildMta(const Scene& scene, const BuildParams& params, const std::string& outPath, const OutputGuard& guard) {
   const auto t0 = Clock::now();
   params.validate();
   scene.validate();
+  if (guard.fitBytes && params.dMin > 0.0)
+    throw Error("mta build: --fit chooses d_min itself; do not pass --d-min as well (--d-min-divisor sets the finest "
+                "d_min --fit may choose)");
   std::optional<tbb::global_control> threads;
   if (params.threads) threads.emplace(tbb::global_control::max_allowed_parallelism, params.threads);
   BuildReport rep;
@@ -204,67 +226,39 @@ BuildReport buildMta(const Scene& scene, const BuildParams& params, const std::s
                   " (the scene's geometry, the tree and the open batch must fit; raise the limit)");
     }
   };
-  const Geometry& in = scene.geometry;
-  if (in.triangleCount() == 0) throw Error("mta: scene '" + scene.name + "' has no triangles");
-  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-  for (const glm::vec3& v : in.positions) {
-    const double c[3] = {v.x, v.y, v.z};
-    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
+  // Everything is decided before the output exists: the plan, its exact size, and (--fit) the d_min.
+  BuildPlan plan;
+  if (guard.fitBytes) {
+    DMinFit fit = fitDMin(scene, params, guard.fitBytes);
+    if (!fit.found)
+      throw Error("mta build: --fit " + formatBytes(guard.fitBytes) + ": no d_min fits: the smallest tree tried, at d_min " +
+                  formatDMin(fit.dMin) + ", takes " + formatBytes(fit.estimate.totalBytes) + " (" +
+                  groupThousands(fit.estimate.nodes) + " nodes; geometry and tables " +
+                  formatBytes(fit.estimate.metadataBytes) + ", original images " + formatBytes(fit.estimate.originalBytes) +
+                  "): pass a larger --fit");
+    plan = std::move(fit.plan);
+    rep.fitDMin = fit.dMin, rep.fitPlans = fit.plans, rep.fitFinerDMin = fit.finerDMin, rep.fitFinerBytes = fit.finerBytes;
+    checkMemory("after choosing d_min for --fit");
+  } else {
+    plan = planBuild(scene, params, checkMemory);
   }
-  const double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
-  const double dMin = params.dMin > 0.0 ? params.dMin : diag / params.dMinDivisor;
-  if (!(dMin > 0.0)) throw Error("mta: scene '" + scene.name + "' has a zero-size bounding box; give --d-min");
-  const uint32_t A = params.atlasSize, layers = uint32_t(in.layers.size());
-
-  MtaMeta meta;
-  meta.params = params;
-  meta.params.tanHalfFov = params.effectiveTanHalfFov();
-  meta.layerCount = layers;
-  meta.textures = scene.textures;
-  CriticalReport crit;
-  const Geometry g = handleCriticalTriangles(scene, params, dMin, crit);
-  meta.stats = BuildStats{in.triangleCount(), g.triangleCount(), crit.criticalAtRequested, crit.criticalAfterRaise,
-                          crit.trianglesAdded, crit.maxSplitDepth, dMin, crit.dMinUsed, diag};
-  checkMemory("after critical-triangle handling");
+  rep.estimate = estimateOutput(plan);
   if (params.progress)
-    std::fprintf(stderr, "mta: %zu triangles, d_min %.6g (requested %.6g), %llu critical triangles split into %llu more\n",
-                 g.triangleCount(), crit.dMinUsed, dMin, (unsigned long long)crit.criticalAfterRaise,
-                 (unsigned long long)crit.trianglesAdded);
-  for (uint8_t alpha = 0; alpha < 2; ++alpha) {
-    std::vector<uint32_t> tris;
-    for (uint32_t t = 0; t < g.triangleCount(); ++t)
-      if (g.alpha[t] == alpha) tris.push_back(t);
-    if (tris.empty()) continue;
-    meta.trees.push_back(buildTree(scene, g, tris, alpha, params, crit.dMinUsed));
-  }
-  // Leaf image lists, image channels and first-use order.
-  meta.images.resize(scene.images.size());
-  std::vector<uint8_t> used(scene.images.size(), 0);
-  uint64_t leafCount = 0;
-  for (Tree& tree : meta.trees) {
-    tree.atlasBlocks.assign(tree.nodes.size() * layers, 0);
-    for (Node& n : tree.nodes) {
-      if (!n.leaf()) continue;
-      ++leafCount;
-      std::set<uint32_t> imgs;
-      for (uint32_t t = n.firstTriangle; t < n.firstTriangle + n.triangleCount; ++t)
-        for (uint32_t l = 0; l < layers; ++l)
-          if (tree.geometry.layers[l].texture[t] >= 0) imgs.insert(scene.textures[tree.geometry.layers[l].texture[t]].image);
-      n.imageFirst = uint32_t(tree.leafImages.size());
-      n.imageCount = uint32_t(imgs.size());
-      for (uint32_t i : imgs) {
-        tree.leafImages.push_back(i);
-        used[i] = 1;
-        meta.images[i].channels = std::max<uint32_t>(meta.images[i].channels, tree.channels());
-      }
-    }
-  }
-  for (size_t i = 0; i < scene.images.size(); ++i) {
-    meta.images[i].width = scene.images[i].width, meta.images[i].height = scene.images[i].height;
-    meta.images[i].name = scene.images[i].name;
-    if (!used[i]) meta.images[i].channels = 3;  // unused images are not stored (0 pieces)
-  }
-  checkMemory("after building the tree structure");
+    std::fprintf(stderr, "mta: planned %s nodes (%s leaves): the file will take %s (%s bytes)%s\n",
+                 groupThousands(rep.estimate.nodes).c_str(), groupThousands(rep.estimate.leaves).c_str(),
+                 formatBytes(rep.estimate.totalBytes).c_str(), groupThousands(rep.estimate.totalBytes).c_str(),
+                 rep.fitPlans ? (", d_min " + formatDMin(rep.fitDMin) + " chosen by --fit from " +
+                                 std::to_string(rep.fitPlans) + " plans").c_str()
+                              : "");
+  refuseIfTooBig(scene, params, plan, rep.estimate, guard);
+  rep.planSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  MtaMeta& meta = plan.meta;
+  if (params.progress)
+    std::fprintf(stderr, "mta: %llu triangles, d_min %.6g (requested %.6g), %llu critical triangles split into %llu more\n",
+                 (unsigned long long)meta.stats.trianglesOut, meta.stats.dMinUsed, meta.stats.dMinRequested,
+                 (unsigned long long)meta.stats.criticalAfterRaise, (unsigned long long)meta.stats.trianglesAdded);
+  const uint32_t A = params.atlasSize, layers = meta.layerCount;
+  const uint64_t leafCount = plan.leaves;
 
   // Memory for the atlas phase, bounded by construction: what is resident now (geometry, tree, the
   // caller's model) + the working set below + the image cache, whose budget is what the limit leaves
@@ -315,12 +309,13 @@ BuildReport buildMta(const Scene& scene, const BuildParams& params, const std::s
                  (unsigned long long)(largestBatch >> 20));
 
   PagingFileWriter writer(outPath);
-  OriginalPacker packer{writer, meta, atlasBytes4, {}, {}, 0};
+  OriginalPacker packer{writer, meta, OriginalBlockLayout(originalBlockTarget(A)), {}, {}, 0};
   ImageCache cache{scene, cacheBudget, {}, 0, 0, 0};
   cacheForMessages = &cache;
   std::vector<uint8_t> stored(scene.images.size(), 0);
   uint64_t leavesDone = 0;
-  auto lastProgress = Clock::now();
+  const auto tWrite = Clock::now();
+  auto lastProgress = tWrite;
   for (size_t ti = 0; ti < meta.trees.size(); ++ti) {
     Tree& tree = meta.trees[ti];
     const uint32_t C = tree.channels();
@@ -375,9 +370,15 @@ BuildReport buildMta(const Scene& scene, const BuildParams& params, const std::s
       checkMemory("while writing atlases");
       if (params.progress && Clock::now() - lastProgress > std::chrono::seconds(2)) {
         lastProgress = Clock::now();
-        std::fprintf(stderr, "mta: %5.1f%%  leaves %llu/%llu, images decoded %llu, file %.1f MiB\n",
-                     100.0 * double(leavesDone) / double(leafCount), (unsigned long long)leavesDone,
-                     (unsigned long long)leafCount, (unsigned long long)cache.decoded, writer.bytesWritten() / 1048576.0);
+        // The total is the plan's exact size, so bytes give the fraction done; the time left assumes the
+        // rate so far (atlases dominate and cost about the same per byte).
+        const double written = double(writer.bytesWritten()), total = double(rep.estimate.totalBytes);
+        const double elapsed = std::chrono::duration<double>(Clock::now() - tWrite).count();
+        std::fprintf(stderr, "mta: %5.1f%%  leaves %s/%s, images decoded %llu, file %s of %s, %s left\n",
+                     100.0 * written / total, groupThousands(leavesDone).c_str(), groupThousands(leafCount).c_str(),
+                     (unsigned long long)cache.decoded, formatBytes(writer.bytesWritten()).c_str(),
+                     formatBytes(rep.estimate.totalBytes).c_str(),
+                     formatDuration(written > 0.0 ? elapsed * (total - written) / written : 0.0).c_str());
       }
     }
     for (auto& t : tree.nodes) t.entries.clear(), t.entries.shrink_to_fit();
@@ -389,8 +390,8 @@ BuildReport buildMta(const Scene& scene, const BuildParams& params, const std::s
   rep.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   checkMemory("at the end");
   if (params.progress)
-    std::fprintf(stderr, "mta: wrote %s: %.1f MiB in %.1f s (peak resident %.0f MiB)\n", outPath.c_str(),
-                 rep.fileBytes / 1048576.0, rep.seconds, rep.peakResidentBytes / 1048576.0);
+    std::fprintf(stderr, "mta: wrote %s: %.1f MiB (estimated %.1f MiB) in %.1f s (peak resident %.0f MiB)\n", outPath.c_str(),
+                 rep.fileBytes / 1048576.0, rep.estimate.totalBytes / 1048576.0, rep.seconds, rep.peakResidentBytes / 1048576.0);
   return rep;
 }
 

@@ -151,6 +151,30 @@ std::vector<uint8_t> encodeMetadata(const MtaMeta& m) {
   return std::move(o.b);
 }
 
+uint64_t metadataBytes(const MtaMeta& m, uint64_t pieces, uint64_t blocks) {
+  // Field by field as encodeMetadata writes them; an array is its uint64 length and its elements.
+  uint64_t n = 4 * 4 + 6 * 8;        // layer_count, atlas_size, border, screen_width; six doubles
+  n += 5 * 8 + 4 + 3 * 8;            // stats
+  n += 4 + uint64_t(m.textures.size()) * (4 + 1 + 1);
+  n += 4;
+  for (const ImageRecord& r : m.images) n += 5 * 4 + 4 + r.name.size();
+  n += 8 + pieces * sizeof(PieceDisk);
+  n += 8 + blocks * sizeof(BlockDisk);
+  n += 4;
+  for (const Tree& t : m.trees) {
+    n += 1 + 8 + uint64_t(t.nodes.size()) * sizeof(NodeDisk);
+    n += 8 + uint64_t(t.geometry.positions.size()) * sizeof(glm::vec3);
+    n += 8 + uint64_t(t.geometry.source.size()) * sizeof(uint32_t);
+    for (uint32_t l = 0; l < m.layerCount; ++l)
+      n += 8 + uint64_t(t.geometry.layers[l].texture.size()) * sizeof(int32_t) + 8 +
+           uint64_t(t.geometry.layers[l].uv.size()) * sizeof(glm::vec2);
+    n += 8 + uint64_t(t.atlasUV.size()) * sizeof(glm::vec2);
+    n += 8 + uint64_t(t.leafImages.size()) * sizeof(uint32_t);
+    n += 8 + uint64_t(t.atlasBlocks.size()) * sizeof(uint32_t);
+  }
+  return n;
+}
+
 namespace {
 
 MtaMeta deserialize(const std::vector<uint8_t>& bytes, const std::string& path) {

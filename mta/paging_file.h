@@ -98,6 +98,9 @@ class PagingFileWriter {
 // The metadata bytes of `meta`, as PagingFileWriter::finish stores them (docs/mta-format.md, "Metadata").
 // Public for tools and tests that rewrite a file's metadata; nothing is checked.
 std::vector<uint8_t> encodeMetadata(const MtaMeta& meta);
+// encodeMetadata(meta).size() if meta held `pieces` pieces and `blocks` blocks, computed from the counts
+// without encoding (the size estimate of a build, output_size.h, calls it before any block exists).
+uint64_t metadataBytes(const MtaMeta& meta, uint64_t pieces, uint64_t blocks);
 
 class PagingFile {
  public:

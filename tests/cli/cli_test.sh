@@ -404,7 +404,8 @@ PY
       done
       fail "the build never started writing"
     }
-    "$tessera" mta build "$src/data/railway.glb" -o tree.mta --quiet > /dev/null 2>&1 & pid=$!
+    # railway.glb at the default d_min plans 13.3 GiB: --max-output lets it start (it is stopped long before).
+    "$tessera" mta build "$src/data/railway.glb" -o tree.mta --max-output 16GiB --quiet > /dev/null 2>&1 & pid=$!
     wait_for_temporary
     kill -TERM "$pid"
     rc=0; wait "$pid" || rc=$?
@@ -412,7 +413,7 @@ PY
     ls tree.mta.tmp-* > /dev/null 2>&1 && fail "SIGTERM left a temporary: $(ls tree.mta.tmp-*)"
     [ "$(cat tree.mta)" = "previous output" ] || fail "SIGTERM damaged the previous output"
     # SIGKILL cannot be caught: the temporary stays until the next writer of tree.mta removes it.
-    "$tessera" mta build "$src/data/railway.glb" -o tree.mta --quiet > /dev/null 2>&1 & pid=$!
+    "$tessera" mta build "$src/data/railway.glb" -o tree.mta --max-output 16GiB --quiet > /dev/null 2>&1 & pid=$!
     wait_for_temporary
     kill -KILL "$pid"
     wait "$pid" || true
@@ -569,6 +570,34 @@ PY
     refused 2 "--memory-budget '4GB': unknown unit 'GB'" "$tessera" replay blend.tframe --memory-budget 4GB
     refused 2 "--memory-budget '0': a frame budget must be at least 1 byte" "$tessera" render blend --memory-budget 0
     refused 2 "--memory-budget '16777216TiB': more than 2^64 - 1 bytes" "$tessera" validate blend.tframe --memory-budget 16777216TiB
+    ;;
+  atlas_tree_build_refuses_a_run_away_tree_and_fits_one)
+    # Issue 14 §2. railway.glb at the default d_min plans 18,168 nodes (13.3 GiB): over --max-output the
+    # build stops before the output exists, naming the size, the nodes and a d_min that fits.
+    refused 2 "mta build: the tree would take 13.3 GiB (18,168 nodes" \
+      "$tessera" mta build "$src/data/railway.glb" -o tree.mta --max-output 100MiB --quiet
+    for part in "but --max-output is 100.0 MiB" "fits (" ", or --fit 100MiB, or raise --max-output"; do
+      grep -qF -- "$part" refused.err || fail "the refusal lacks '$part': $(cat refused.err)"
+    done
+    [ -z "$(ls -A | grep -v '^refused\.')" ] || fail "a refused build left files behind: $(ls -A)"
+    d=$(sed -n 's/.*pass --d-min \([0-9.e+-]*\),.*/\1/p' refused.err)
+    [ -n "$d" ] || fail "no d_min suggested: $(cat refused.err)"
+    # The suggestion builds within the limit, and the plan's estimate is the file's size to the byte.
+    "$tessera" mta build "$src/data/railway.glb" -o tree.mta --d-min "$d" --max-output 100MiB --quiet > build.json
+    size=$(stat -c %s tree.mta)
+    [ "$size" -le $((100 * 1024 * 1024)) ] || fail "the suggested d_min $d wrote $size bytes"
+    [ "$(json_field build.json "['build']['estimated_bytes']")" = "$size" ] || fail "estimate != file size $size"
+    # --fit searches the same grid from the same start: it chooses the suggested d_min.
+    "$tessera" mta build "$src/data/railway.glb" -o fit.mta --fit 100MiB --quiet > fit.json
+    [ "$(json_field fit.json "['build']['fit']['d_min'] == $d")" = True ] || fail "--fit chose $(json_field fit.json "['build']['fit']")"
+    cmp -s tree.mta fit.mta || fail "--fit's tree differs from the one built with --d-min $d"
+    refused 2 "--fit chooses d_min itself" "$tessera" mta build "$src/data/railway.glb" -o x.mta --fit 1GiB --d-min 3
+    refused 2 "--max-output 'lots': not a byte size" "$tessera" mta build "$src/data/railway.glb" -o x.mta --max-output lots
+    refused 2 "--max-output '8GB': " "$tessera" mta build "$src/data/railway.glb" -o x.mta --max-output 8GB
+    refused 2 "--fit '0': must be at least 1 byte" "$tessera" mta build "$src/data/railway.glb" -o x.mta --fit 0
+    refused 2 "--fit '-1MiB'" "$tessera" mta build "$src/data/railway.glb" -o x.mta --fit -1MiB
+    [ ! -e x.mta ] || fail "a refused build wrote x.mta"
+    "$tessera" mta build --help | grep -qF -- "--max-output" || fail "mta build --help does not explain --max-output"
     ;;
   model_over_its_budget_exits_2)
     # railway.glb has 26,797 triangles: a budget of 1,000 refuses it before any geometry is read.

@@ -121,6 +121,16 @@ TEST(SceneManifest, BadJsonIsAnErrorNamingTheLineAndColumn) {
   EXPECT_EQ(errorOf([&] { loadModel(dir / "missing.json"); }), dir / "missing.json" + ": no such model file");
 }
 
+TEST(SceneManifest, ANumberBeyondTheRangeOfADoubleIsAnErrorNamingTheManifest) {
+  ScratchDir dir;
+  writeTriangle(dir, "a.ac");
+  testing::writeFile(dir / "scene.json", "{\"schema\": 1, \"models\": [{\"file\": \"a.ac\", \"scale\": [1e309, 1, 1]}]}\n");
+  EXPECT_EQ(errorOf([&] { loadModel(dir / "scene.json"); }),
+            dir / "scene.json" +
+                ": not valid JSON: a number beyond the range of a double: [json.exception.out_of_range.406] number "
+                "overflow parsing '1e309'");
+}
+
 TEST(SceneManifest, EveryMalformedEntryIsAnErrorNamingTheManifestAndTheJsonPointer) {
   ScratchDir dir;
   writeTriangle(dir, "a.ac");

@@ -1,5 +1,8 @@
 // `tessera mta build` / `tessera mta info`: the multiresolution texture atlas tree (mta/, docs/mta-build.md).
+#include <sys/statvfs.h>
+
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
 #include "model/model.h"
@@ -8,6 +11,7 @@
 #include "mta/paging_file.h"
 #include "mta/scene.h"
 #include "base/error.h"
+#include "base/resource_limits.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/options.h"
 
@@ -20,8 +24,40 @@ struct MtaBuildArgs {
   mta::BuildParams p;
   double memoryLimitGiB = 4.0;
   bool quiet = false;
-  ResourceLimits limits;  // the model budgets (--model-budget-*)
+  uint64_t maxOutput = 0;  // --max-output; 0: not given (the default is derived from the free space)
+  uint64_t fit = 0;        // --fit; 0: not given
+  ResourceLimits limits;   // the model budgets (--model-budget-*)
 };
+
+// Without --max-output: at most 8 GiB, and never more than the free space where the output goes (a build
+// that fills the disk fails after hours and takes other work down with it). With --fit the size asked
+// for bounds the tree already, so only the free space applies.
+constexpr uint64_t kDefaultMaxOutput = uint64_t(8) << 30;
+
+mta::OutputGuard outputGuard(const MtaBuildArgs& a) {
+  mta::OutputGuard g;
+  g.fitBytes = a.fit;
+  if (a.maxOutput) {
+    g.maxBytes = a.maxOutput;
+    return g;
+  }
+  std::filesystem::path dir = std::filesystem::path(a.out).parent_path();
+  if (dir.empty()) dir = ".";
+  struct statvfs st{};
+  // An output directory that cannot be queried (it may not exist) keeps 8 GiB; creating the file then
+  // fails with its own message.
+  const bool known = ::statvfs(dir.c_str(), &st) == 0;
+  const uint64_t freeBytes = known ? uint64_t(st.f_bavail) * st.f_frsize : UINT64_MAX;
+  const uint64_t cap = a.fit ? UINT64_MAX : kDefaultMaxOutput;
+  g.maxBytes = std::min(cap, freeBytes);
+  if (freeBytes < cap)
+    g.maxReason = " (the free space in " + dir.string() + "; without --max-output the limit is the smaller of " +
+                  (a.fit ? std::string("--fit's size") : formatBytes(kDefaultMaxOutput)) + " and the free space)";
+  else
+    g.maxReason = " (the default; the free space in " + dir.string() + " is " +
+                  (known ? formatBytes(freeBytes) : std::string("unknown")) + ")";
+  return g;
+}
 
 void printSummary(const nlohmann::json& j) {
   for (const auto& t : j["trees"])
@@ -64,17 +100,46 @@ void addMtaCommands(CLI::App& app) {
       ->capture_default_str();
   addThreadsOption(build, a->p.threads, "Worker threads; the bytes never depend on it");
   addModelBudgetOptions(build, a->limits);
+  addByteSizeOption(build, "--max-output", a->maxOutput,
+                    "Largest file the build may write; a larger plan stops before writing, exit 2, naming a d_min "
+                    "that fits (default: the smaller of 8 GiB and the free space in the output's directory)");
+  auto* fitOpt = addByteSizeOption(build, "--fit", a->fit,
+                                   "Choose d_min: the finest one (on a grid of two significant digits, from D / "
+                                   "--d-min-divisor up) whose file fits this size; excludes --d-min");
   build->add_flag("--quiet", a->quiet, "No progress on stderr");
-  build->callback([a] {
+  build->footer(
+      "Before it creates the output, the build plans the whole tree (image headers only) and computes the file's\n"
+      "exact size: 128-byte header + every atlas (A x A x 3 or 4 bytes per node and layer) and every block of\n"
+      "original images, each padded to 16 bytes + the metadata (nodes, geometry, tables). A plan over\n"
+      "--max-output stops within seconds with exit 2 and no file, naming the size, the nodes and a d_min that\n"
+      "fits. --fit SIZE searches that d_min itself by bisection over plans (same inputs, same choice) and\n"
+      "reports it in build.fit of the JSON. Progress (unless --quiet) shows the file written of the total, and\n"
+      "the time left. docs/mta-build.md");
+  build->callback([a, fitOpt, build] {
+    if (fitOpt->count() && build->get_option("--d-min")->count())
+      throw Error("mta build: --fit chooses d_min itself; do not pass --d-min as well (--d-min-divisor sets the finest "
+                  "d_min --fit may choose)");
     a->p.memoryLimit = uint64_t(a->memoryLimitGiB * double(1ull << 30));
     a->p.progress = !a->quiet;
     a->p.validate();
     auto model = std::make_shared<const model::Model>(model::loadModel(a->scene, a->limits));
     const mta::Scene scene = mta::sceneFromModel(model);
-    const mta::BuildReport r = mta::buildMta(scene, a->p, a->out);
+    const mta::OutputGuard guard = outputGuard(*a);
+    const mta::BuildReport r = mta::buildMta(scene, a->p, a->out, guard);
     mta::PagingFile f(a->out);
     nlohmann::json j = mta::describe(f);
-    j["build"] = {{"seconds", r.seconds}, {"peak_resident_bytes", r.peakResidentBytes}, {"images_decoded", r.imagesDecoded}};
+    j["build"] = {{"seconds", r.seconds},
+                  {"peak_resident_bytes", r.peakResidentBytes},
+                  {"images_decoded", r.imagesDecoded},
+                  {"plan_seconds", r.planSeconds},
+                  {"estimated_bytes", r.estimate.totalBytes},
+                  {"max_output_bytes", guard.maxBytes}};
+    if (guard.fitBytes)
+      j["build"]["fit"] = {{"size_bytes", guard.fitBytes},
+                           {"d_min", r.fitDMin},
+                           {"plans", r.fitPlans},
+                           {"next_finer_d_min", r.fitFinerDMin},
+                           {"next_finer_bytes", r.fitFinerBytes}};
     std::printf("%s\n", j.dump(2).c_str());
     if (!a->quiet) printSummary(j);
   });

@@ -112,6 +112,16 @@ CLI::Option* addRealOption(CLI::App* cmd, const std::string& name, double& value
       }));
 }
 
+CLI::Option* addByteSizeOption(CLI::App* cmd, const std::string& name, uint64_t& bytes, const std::string& help) {
+  return cmd
+      ->add_option_function<std::string>(
+          name, [&bytes, name](const std::string& text) { bytes = parseByteSize(text, name); },
+          help + " (a size such as 512MiB or 16GiB, at least 1B)")
+      ->check(checker("SIZE >= 1B", [name](const std::string& text) {
+        if (parseByteSize(text, name) == 0) refuse(name, text, "must be at least 1 byte");
+      }));
+}
+
 CLI::Option* addMemoryBudgetOption(CLI::App* cmd, ResourceLimits& limits) {
   const std::string help = fmt::format(
       "Memory a frame may create: every texture level and layer, buffer and render target, summed and checked "

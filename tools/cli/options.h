@@ -2,11 +2,11 @@
 //
 // Implements: --threads (0..kMaxThreads of base/resource_limits.h, 0 = all cores), --size WxH (each
 // side 1..kMaxTextureSize of raster/limits.h, digits only, overflow-checked), real-valued options with a
-// documented range (NaN and infinities always refused), and --memory-budget (a byte size,
-// base/byte_size.h, into ResourceLimits::frameBytes). Each add*Option registers the option with a
-// validator that runs while the command line is parsed, so a bad value stops the command before any
-// work, with exit status 2 and the message "<option> '<value>': <reason>" naming the bound; --help
-// shows each range.
+// documented range (NaN and infinities always refused), byte sizes (base/byte_size.h: mta build's
+// --max-output and --fit) and --memory-budget (a byte size into ResourceLimits::frameBytes). Each
+// add*Option registers the option with a validator that runs while the command line is parsed, so a bad
+// value stops the command before any work, with exit status 2 and the message "<option> '<value>':
+// <reason>" naming the bound; --help shows each range.
 // Does not implement: the options of one command alone (its cmd_*.cpp registers them), or the
 // semantic checks of a library (mta::BuildParams::validate and the like re-check what they receive).
 #pragma once
@@ -50,6 +50,10 @@ inline constexpr RealRange kNonNegative{0.0, kInf, false, false};
 // appended. The value stored is CLI11's conversion of the text, as for any option.
 CLI::Option* addRealOption(CLI::App* cmd, const std::string& name, double& value, const std::string& help,
                            const RealRange& range);
+
+// A byte size option (base/byte_size.h: 512MiB, 8GiB, ...), at least 1 byte, parsed while the command line
+// is: a bad value exits 2 with "<name> '<text>': <reason>". `help` gets the accepted form appended.
+CLI::Option* addByteSizeOption(CLI::App* cmd, const std::string& name, uint64_t& bytes, const std::string& help);
 
 // --memory-budget SIZE: ResourceLimits::frameBytes, at least 1 byte (docs/limits.md).
 CLI::Option* addMemoryBudgetOption(CLI::App* cmd, ResourceLimits& limits);
