@@ -43,8 +43,10 @@ const Api* load() {
       tried += "\n  " + path + ": no such file";
       continue;
     }
-    // RTLD_LOCAL: OIIO's hundreds of libraries stay out of the global symbol namespace.
-    void* h = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    // RTLD_LOCAL: OIIO's hundreds of libraries stay out of the global symbol namespace. RTLD_LAZY, as
+    // the dynamic loader binds them at a normal start: RTLD_NOW would resolve every function of all
+    // ~260 libraries up front, most of which an image write never calls.
+    void* h = ::dlopen(path.c_str(), RTLD_LAZY | RTLD_LOCAL);
     if (!h) throw Error("cannot load the image module " + path + ": " + ::dlerror());
     using Entry = const Api* (*)();
     auto entry = reinterpret_cast<Entry>(::dlsym(h, "tessera_image_module_api"));
