@@ -32,7 +32,7 @@ mta::RendererOptions rendererOptions() {
   o.width = kWidth;
   o.height = kHeight;
   o.tau = 0.0;
-  o.conservative = true;
+  o.bound = mta::DistanceBound::PerNode;
   o.threads = 0;
   o.residency.capacityBytes = uint64_t(kCapacityMiB * 1048576.0);
   o.residency.budget = mta::LoadBudget::parse(kBudget, "--budget");

@@ -15,6 +15,21 @@ const char* renderModeName(RenderMode m) {
   return "?";
 }
 
+const char* distanceBoundName(DistanceBound b) {
+  switch (b) {
+    case DistanceBound::PerNode: return "node";
+    case DistanceBound::FrameCorner: return "corner";
+    case DistanceBound::Thesis: return "thesis";
+  }
+  return "?";
+}
+
+DistanceBound parseDistanceBound(const std::string& text, const std::string& what) {
+  for (DistanceBound b : {DistanceBound::PerNode, DistanceBound::FrameCorner, DistanceBound::Thesis})
+    if (text == distanceBoundName(b)) return b;
+  throw Error(what + " '" + text + "': expected node, corner or thesis");
+}
+
 BlockIndex buildBlockIndex(const MtaMeta& meta) {
   BlockIndex bi;
   bi.layerCount = meta.layerCount;
@@ -79,10 +94,44 @@ ViewContext makeViewContext(const MtaMeta& meta, const ViewParams& view) {
   const double ty = tx * double(view.height) / double(view.width);
   // cos²θ of the frustum's corner ray: 1 / (1 + tan²x + tan²y). A point at distance r and angle θ from
   // the view axis has depth r·cosθ, and the projection's largest singular value there is f / (r·cos²θ).
-  c.distanceFactor = view.conservative ? 1.0 / (1.0 + tx * tx + ty * ty) : 1.0;
+  c.bound = view.bound;
+  c.distanceFactor = view.bound == DistanceBound::Thesis ? 1.0 : 1.0 / (1.0 + tx * tx + ty * ty);
+  c.view = viewMatrixD(view.camera);
+  c.tanX = tx;
+  c.tanY = ty;
   const double tauBuild = meta.params.tau, tauFrame = view.tau > 0.0 ? view.tau : meta.params.tau;
   c.minDistanceScale = (double(view.width) / double(meta.params.screenWidth)) * (meta.params.tanHalfFov / tx) * (tauBuild / tauFrame);
   return c;
+}
+
+double distanceFactor(const ViewContext& ctx, const std::array<float, 6>& b) {
+  if (ctx.bound != DistanceBound::PerNode) return ctx.distanceFactor;
+  // The magnification at a point r from the eye, θ off the view axis, is f / (r·cos²θ) (traversal.h), so
+  // min over the box of r·cos²θ >= d · min cos²θ: θ's maximum over the box clipped to the frustum is a
+  // sound factor. tan²θ = (x/z)² + (y/z)² in camera space is convex in the window coordinates (x/z, y/z),
+  // and the box (in front of the eye) projects inside the rectangle of its corners' projections: its
+  // maximum over that rectangle clipped to the window lies at a corner of the clipped rectangle.
+  double minX = 0.0, maxX = 0.0, minY = 0.0, maxY = 0.0;
+  for (int k = 0; k < 8; ++k) {
+    const double x = b[(k & 1) ? 3 : 0], y = b[(k & 2) ? 4 : 1], z = b[(k & 4) ? 5 : 2];
+    const glm::dmat4& m = ctx.view;
+    const double cx = ((m[0][0] * x + m[1][0] * y) + m[2][0] * z) + m[3][0];
+    const double cy = ((m[0][1] * x + m[1][1] * y) + m[2][1] * z) + m[3][1];
+    const double depth = -(((m[0][2] * x + m[1][2] * y) + m[2][2] * z) + m[3][2]);
+    // A corner on or behind the eye plane: the projection is unbounded, the frustum's corner ray bounds θ.
+    if (!(depth > 0.0)) return ctx.distanceFactor;
+    const double px = cx / depth, py = cy / depth;
+    if (k == 0 || px < minX) minX = px;
+    if (k == 0 || px > maxX) maxX = px;
+    if (k == 0 || py < minY) minY = py;
+    if (k == 0 || py > maxY) maxY = py;
+  }
+  const double x0 = std::max(minX, -ctx.tanX), x1 = std::min(maxX, ctx.tanX);
+  const double y0 = std::max(minY, -ctx.tanY), y1 = std::min(maxY, ctx.tanY);
+  // Outside the window (a box the conservative cull kept): nothing of it is drawn; any sound factor will do.
+  if (!(x0 <= x1) || !(y0 <= y1)) return ctx.distanceFactor;
+  const double tx2 = std::max(x0 * x0, x1 * x1), ty2 = std::max(y0 * y0, y1 * y1);
+  return std::max(1.0 / (1.0 + (tx2 + ty2)), ctx.distanceFactor);
 }
 
 namespace {
@@ -95,7 +144,7 @@ struct Walker {
   bool culled(const Node& n) const { return outsideFrustum(ctx.frustum, n.bounds); }
   double distance(const Node& n) const { return distanceToBox(ctx.eye, n.bounds); }
   bool atlasSufficient(const Node& n, double d) const {
-    return d * ctx.distanceFactor >= double(n.minDistance) * ctx.minDistanceScale;
+    return d * distanceFactor(ctx, n.bounds) >= double(n.minDistance) * ctx.minDistanceScale;
   }
 };
 

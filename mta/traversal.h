@@ -4,10 +4,12 @@
 // Implements:
 // - the distance test "d >= N.minDistance" with minDistance rescaled from the build's screen width,
 //   field of view and τ to the frame's (f_proj, §4.5.2, is linear in each), and d the distance from the
-//   eye to N.bounds, optionally made conservative (ViewParams::conservative, docs/mta-render.md): d is
-//   multiplied by cos²θ_max, θ_max the angle between the view axis and the frustum's corner ray. The
-//   thesis's estimate assumes a segment seen on the view axis; off axis a perspective projection
-//   magnifies by up to 1/cos²θ, so only the conservative test makes the τ guarantee hold per pixel;
+//   eye to N.bounds, made conservative by default (DistanceBound, docs/mta-render.md). The thesis's
+//   estimate assumes a segment seen on the view axis; off axis a perspective projection magnifies by up
+//   to 1/cos²θ, so d is multiplied by cos²θ_max: with PerNode, θ_max is the largest angle from the view
+//   axis over the node's box clipped to the frustum (its projected bounding rectangle clipped to the
+//   window); with FrameCorner, the frustum's corner ray for every node. Both keep the τ guarantee at
+//   every pixel; PerNode refines fewer nodes near the view axis;
 // - usage categories per block (Needed: every atlas on the rendering path and the originals of refined
 //   leaves; Culled: the atlas of a culled child of a refined node with a visible sibling; Parent needed:
 //   the children's atlases / the leaf's originals of a node drawn with its atlas), the priority key
@@ -21,6 +23,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "mta/camera.h"
@@ -37,11 +40,21 @@ enum class RenderMode : uint8_t {
 };
 const char* renderModeName(RenderMode m);
 
+// How the distance test accounts for off-axis magnification (see above and docs/mta-render.md).
+enum class DistanceBound : uint8_t {
+  PerNode = 0,      // d · cos²θ_max over the node's box clipped to the frustum (default)
+  FrameCorner = 1,  // d · cos²θ_max of the frustum's corner ray, the same for every node
+  Thesis = 2,       // plain d (the thesis; the τ guarantee holds on the view axis only)
+};
+const char* distanceBoundName(DistanceBound b);
+// "node", "corner", "thesis"; throws Error naming `what` otherwise.
+DistanceBound parseDistanceBound(const std::string& text, const std::string& what);
+
 struct ViewParams {
   Camera camera;
   uint32_t width = 1024, height = 768;
-  double tau = 0.0;           // runtime τ; 0 = the build's
-  bool conservative = true;   // cos²θ_max distance correction (see above)
+  double tau = 0.0;  // runtime τ; 0 = the build's
+  DistanceBound bound = DistanceBound::PerNode;
 };
 
 // Which blocks each node needs: its atlas blocks (one per layer) and, for leaves, the blocks holding
@@ -65,10 +78,17 @@ BlockIndex buildBlockIndex(const MtaMeta& meta);
 struct ViewContext {
   Frustum frustum;
   glm::dvec3 eye{0, 0, 0};
-  double distanceFactor = 1.0;    // cos²θ_max or 1
+  DistanceBound bound = DistanceBound::PerNode;
+  double distanceFactor = 1.0;    // FrameCorner (and PerNode's fallback): the corner ray's cos²θ; Thesis: 1
   double minDistanceScale = 1.0;  // build -> frame rescaling of minDistance
+  glm::dmat4 view{1.0};           // viewMatrixD: camera space, looking down -z
+  double tanX = 0.0, tanY = 0.0;  // the window's half extents at depth 1
 };
 ViewContext makeViewContext(const MtaMeta& meta, const ViewParams& view);
+// The factor d is multiplied by in the distance test of a node with these bounds: cos²θ_max of the box
+// clipped to the frustum (PerNode; the corner ray's when the box reaches behind the eye plane, where its
+// projection is unbounded), the corner ray's (FrameCorner) or 1 (Thesis). Never below the corner ray's.
+double distanceFactor(const ViewContext& ctx, const std::array<float, 6>& bounds);
 
 // One entry per paging-file block.
 std::vector<BlockPriority> usagePriorities(const MtaMeta& meta, const BlockIndex& index, const ViewContext& ctx);

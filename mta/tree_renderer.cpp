@@ -35,7 +35,7 @@ ViewParams TreeRenderer::view(const Camera& camera) const {
   v.width = options_.width;
   v.height = options_.height;
   v.tau = options_.tau;
-  v.conservative = options_.conservative;
+  v.bound = options_.bound;
   return v;
 }
 

@@ -30,7 +30,7 @@ struct RendererOptions {
   ResidencyOptions residency;     // AtlasTree mode only
   uint32_t width = 1024, height = 768;
   double tau = 0.0;               // 0 = the build's τ
-  bool conservative = true;       // see traversal.h
+  DistanceBound bound = DistanceBound::PerNode;  // see traversal.h
   int threads = 0;                // oracle threads; the bytes never depend on it
 };
 

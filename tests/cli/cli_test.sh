@@ -377,7 +377,18 @@ PY
       render/frames.json render1/frames.json || fail "frames differ between thread counts"
     "$tessera" texel tree.mta --frames 20 --size 160x120 --budget unlimited --capacity 512 --save-every 10 -o texel --quiet > texel.json
     [ "$(json_field texel.json "['magnification_violations_when_every_needed_block_resident']")" = "0" ] || fail "violations: $(cat texel.json)"
-    for f in texel.json histogram.png texel_0000.png texel_0019.png; do [ -s "texel/$f" ] || fail "texel did not write $f"; done
+    for f in texel.json histogram.png texel_0000.png texel_0019.png texel_axis_0000.png; do [ -s "texel/$f" ] || fail "texel did not write $f"; done
+    [ "$(json_field texel.json "['per_axis_magnification_violations_when_every_needed_block_resident']")" != "" ] || fail "no per-axis count"
+    # The frustum's corner ray for every node instead of the per-node bound: never fewer nodes drawn.
+    "$tessera" texel tree.mta --frames 20 --size 160x120 --budget unlimited --capacity 512 --save-every 0 --distance-bound corner -o texelc --quiet > texelc.json
+    [ "$(json_field texelc.json "['magnification_violations_when_every_needed_block_resident']")" = "0" ] || fail "corner violations: $(cat texelc.json)"
+    python3 - texel.json texelc.json <<'PY' || fail "the per-node bound drew more nodes than the corner ray"
+import json, sys
+n, c = (json.load(open(p)) for p in sys.argv[1:])
+assert n["atlas_nodes_drawn"] + n["original_leaves_drawn"] <= c["atlas_nodes_drawn"] + c["original_leaves_drawn"], (n, c)
+PY
+    if "$tessera" texel tree.mta --distance-bound axis -o texelbad --quiet > /dev/null 2> bad.err; then fail "--distance-bound axis accepted"; fi
+    grep -q -- "--distance-bound" bad.err || fail "bad --distance-bound not named: $(cat bad.err)"
     "$tessera" mta runs tree.mta --frames 12 --size 128x96 --save-every 0 -o runs --quiet > runs.json
     for m in original dummy atlas_tree; do
       [ "$(json_field runs.json "['$m']['draw_calls_max']")" != "" ] || fail "runs lacks $m"

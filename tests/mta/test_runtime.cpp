@@ -244,9 +244,32 @@ TEST(TexelAnalysis, NoAtlasPixelMagnifiesBeyondTauWhenEveryNeededBlockIsResident
     const FrameResult fr = r.renderFrame(c);
     const TexelFrame t = analyzeTexels(r, c, fr, r.triangleIds(c, fr.plan), f.meta().params.tau);
     EXPECT_EQ(t.magnificationViolations, 0u) << "frame " << fr.frame << ", max ratio " << t.maxAtlasRatioBase;
+    // The wall's textures are mapped without stretch, so a texel is as long on screen along s and t.
+    EXPECT_EQ(t.perAxisViolations, 0u) << "frame " << fr.frame << ", max per axis " << t.maxAtlasAxisBase;
     atlasPixels += t.pixelsAtlas;
   }
   EXPECT_GT(atlasPixels, 10000u);
+}
+
+// The per-node bound passes the distance test wherever the corner ray's does (its factor is never
+// smaller), so it stops the traversal at the same node or above: never more draws; over the path fewer
+// nodes, and the guarantee still holds.
+TEST(TexelAnalysis, ThePerNodeBoundDrawsFewerNodesThanTheCornerRayAndKeepsTheGuarantee) {
+  const PagingFile& f = *fixture().tree;
+  RendererOptions corner = everythingResident(), node = everythingResident();
+  corner.bound = DistanceBound::FrameCorner;
+  node.bound = DistanceBound::PerNode;
+  TreeRenderer rc(f, corner), rn(f, node);
+  uint64_t nodesCorner = 0, nodesNode = 0;
+  for (const Camera& c : path()) {
+    const FrameResult a = rc.renderFrame(c), b = rn.renderFrame(c);
+    EXPECT_LE(b.plan.atlasNodes + b.plan.originalLeaves, a.plan.atlasNodes + a.plan.originalLeaves) << "frame " << a.frame;
+    nodesCorner += a.plan.atlasNodes + a.plan.originalLeaves;
+    nodesNode += b.plan.atlasNodes + b.plan.originalLeaves;
+    const TexelFrame t = analyzeTexels(rn, c, b, rn.triangleIds(c, b.plan), f.meta().params.tau);
+    EXPECT_EQ(t.magnificationViolations, 0u) << "frame " << b.frame;
+  }
+  EXPECT_LT(nodesNode, nodesCorner);
 }
 
 TEST(TexelAnalysis, AFrameDrawnWithTheRootAloneReportsViolationsUpClose) {
@@ -259,7 +282,45 @@ TEST(TexelAnalysis, AFrameDrawnWithTheRootAloneReportsViolationsUpClose) {
   const FrameResult fr = r.renderFrame(close);
   const TexelFrame t = analyzeTexels(r, close, fr, r.triangleIds(close, fr.plan), f.meta().params.tau);
   EXPECT_GT(t.magnificationViolations, 1000u);
+  EXPECT_GT(t.perAxisViolations, 1000u);
   EXPECT_EQ(t.pixelsOriginal, 0u);
+}
+
+// s runs over 4 times as many texels as t across each quad: seen head-on, a texel is 4 times longer on
+// screen along t than GL's ρ (the longer screen-axis derivative, along s) says, at every level sampled.
+TEST(TexelAnalysis, AStretchedTextureSpansFourTimesMorePixelsAlongOneEdgeThanRhoSays) {
+  Scene scene = gridScene(4, 4, 32, 1.0f);
+  for (glm::vec2& uv : scene.geometry.layers[0].uv) uv.x *= 4.0f;
+  TempFile file{"stretched.mta"};
+  BuildParams p;
+  p.atlasSize = 64;
+  p.border = 2;
+  p.dMin = 1.5;
+  p.screenWidth = 256;
+  p.threads = 2;
+  buildMta(scene, p, file.path);
+  const PagingFile f(file.path);
+  RendererOptions o = everythingResident();
+  o.mode = RenderMode::Original;
+  TreeRenderer r(f, o);
+  Camera c;
+  c.eye = {2.0, 2.0, 12.0};
+  c.target = {2.0, 2.0, 0.0};
+  c.tanHalfFovX = 0.5;
+  c.nearPlane = 0.05;
+  c.farPlane = 100.0;
+  const FrameResult fr = r.renderFrame(c);
+  const TexelFrame t = analyzeTexels(r, c, fr, r.triangleIds(c, fr.plan), f.meta().params.tau);
+  uint64_t pixels = 0, belowLevel0 = 0;
+  for (size_t i = 0; i < t.ratio.size(); ++i) {
+    if (t.source[i] != 2) continue;
+    ++pixels;
+    if (t.ratio[i] != t.ratioBase[i]) ++belowLevel0;
+    EXPECT_NEAR(t.axisRatio[i] / t.ratio[i], 4.0, 0.01) << "pixel " << i;
+  }
+  EXPECT_GT(pixels, 1000u);
+  EXPECT_GT(belowLevel0, 1000u) << "the view should sample below level 0";
+  EXPECT_EQ(t.perAxisViolations, 0u) << "original textures never count as violations";
 }
 
 TEST(TexelAnalysis, RatioBinsAreThePowersOfTheSquareRootOfTwo) {

@@ -45,6 +45,50 @@ verify::RgbaCanvas histogramPng(const std::array<uint64_t, mta::kRatioBins>& his
   return c;
 }
 
+// A heat map (mta::heatMap) with a colour bar underneath: the pixels-per-texel scale from 1/4 to 4τ,
+// logarithmic like the colours, τ marked, and the special colours named, so the image reads on its own.
+verify::RgbaCanvas heatMapWithBar(const mta::TexelFrame& t, double tau, bool perAxis) {
+  const std::vector<uint8_t> heat = mta::heatMap(t, tau, perAxis);
+  const int w = std::max(int(t.width), 420), h = int(t.height), barH = 14, legend = 106, left = 12, barW = w - 2 * left;
+  verify::RgbaCanvas c(w, h + legend, {255, 255, 255, 255});
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < int(t.width); ++x) {
+      const uint8_t* p = heat.data() + (size_t(y) * t.width + size_t(x)) * 4;
+      c.set(x, y, {p[0], p[1], p[2], p[3]});
+    }
+  // log2 of the bar's ends: 1/4 and 4τ.
+  const double lt = mta::log2Exact(tau), lo = -2.0, hi = lt + 2.0;
+  auto xOf = [&](double ratio) { return left + int(double(barW) * (mta::log2Exact(ratio) - lo) / (hi - lo) + 0.5); };
+  const int top = h + 22;  // τ's label goes above the bar
+  for (int i = 0; i < barW; ++i) {
+    const auto col = mta::heatColorLog2(lo + (hi - lo) * (i + 0.5) / barW, lt);
+    c.fillRect(left + i, top, 1, barH, {col[0], col[1], col[2], col[3]});
+  }
+  const verify::Rgba black{0, 0, 0, 255};
+  char label[32];
+  for (double r : {0.25, 0.5, 1.0, 2.0, 4.0 * tau}) {
+    if (r > 1.0 && std::fabs(r - tau) < 0.15 * tau) continue;  // τ gets its own mark
+    c.fillRect(xOf(r), top + barH, 1, 4, black);
+    std::snprintf(label, sizeof label, "%g", r);
+    c.text(std::clamp(xOf(r) - verify::RgbaCanvas::textWidth(label, 2) / 2, 0, w - 12), top + barH + 6, label, black, 2);
+  }
+  const int xt = xOf(tau);
+  c.fillRect(xt - 1, top - 4, 3, barH + 8, black);
+  std::snprintf(label, sizeof label, "tau=%g", tau);
+  c.text(std::clamp(xt - verify::RgbaCanvas::textWidth(label, 2) / 2, 0, w - 12), h + 6, label, black, 2);
+  c.text(left, top + barH + 26,
+         perAxis ? "pixels per texel along its s and t edges (the larger), at the level sampled"
+                 : "pixels per texel (GL's isotropic rho), at the level sampled",
+         black, 1);
+  c.fillRect(left, top + barH + 38, 8, 8, {255, 0, 255, 255});
+  c.text(left + 12, top + barH + 39, "violation: atlas beyond tau where the original texture was finer", black, 1);
+  c.fillRect(left, top + barH + 50, 8, 8, {45, 45, 45, 255});
+  c.text(left + 12, top + barH + 51, "untextured", black, 1);
+  c.fillRect(left + 90, top + barH + 50, 8, 8, {90, 90, 90, 255});
+  c.text(left + 102, top + barH + 51, "background", black, 1);
+  return c;
+}
+
 }  // namespace
 
 nlohmann::json runTexel(const PathRunArgs& a) {
@@ -68,7 +112,8 @@ nlohmann::json runTexel(const PathRunArgs& a) {
   nlohmann::json rows = nlohmann::json::array();
   std::array<uint64_t, mta::kRatioBins> hist{};
   uint64_t violations = 0, violationsAllResident = 0, framesAllResident = 0, atlasPixels = 0, abovePixels = 0;
-  double maxRatio = 0.0;
+  uint64_t axisViolations = 0, axisViolationsAllResident = 0, axisAbovePixels = 0, atlasNodes = 0, leaves = 0, binds = 0;
+  double maxRatio = 0.0, maxAxis = 0.0;
   Progress progress("texel", path.frames.size(), a.quiet);
   for (size_t i = 0; i < path.frames.size(); ++i) {
     mta::FrameResult r = renderer.renderFrame(path.frames[i]);
@@ -84,16 +129,24 @@ nlohmann::json runTexel(const PathRunArgs& a) {
     atlasPixels += t.pixelsAtlas;
     abovePixels += t.atlasAboveTau;
     maxRatio = std::max(maxRatio, t.maxAtlasRatioBase);
+    axisViolations += t.perAxisViolations;
+    axisAbovePixels += t.atlasAxisAboveTau;
+    maxAxis = std::max(maxAxis, t.maxAtlasAxisBase);
+    atlasNodes += r.plan.atlasNodes;
+    leaves += r.plan.originalLeaves;
+    binds += r.counters.texture_binds;
     if (r.plan.coarserThanNeeded == 0) {
       ++framesAllResident;
       violationsAllResident += t.magnificationViolations;
+      axisViolationsAllResident += t.perAxisViolations;
     }
     if (saveFrame(a, i, path.frames.size())) {
-      const std::vector<uint8_t> heat = mta::heatMap(t, tau);
-      writePngRGBA8((fs::path(a.out) / frameName("texel", i)).string(), int(t.width), int(t.height), heat.data());
+      writeChartPng((fs::path(a.out) / frameName("texel", i)).string(), heatMapWithBar(t, tau, false));
+      writeChartPng((fs::path(a.out) / frameName("texel_axis", i)).string(), heatMapWithBar(t, tau, true));
       writeFramePng((fs::path(a.out) / frameName("frame", i)).string(), t.width, t.height, r.image);
     }
-    progress.tick(i + 1, std::to_string(t.magnificationViolations) + " violations");
+    progress.tick(i + 1, std::to_string(t.magnificationViolations) + " / " + std::to_string(t.perAxisViolations) +
+                             " violations (isotropic / per axis)");
   }
   nlohmann::json histJson = nlohmann::json::array();
   for (int b = 0; b < mta::kRatioBins; ++b) histJson.push_back({{"ratio_at_least", mta::ratioBinLower(b)}, {"pixels", hist[size_t(b)]}});
@@ -105,6 +158,13 @@ nlohmann::json runTexel(const PathRunArgs& a) {
                             {"atlas_pixels", atlasPixels},
                             {"atlas_pixels_above_tau_capped_by_original", abovePixels - violations},
                             {"max_atlas_ratio_level0", maxRatio},
+                            {"per_axis_magnification_violations", axisViolations},
+                            {"per_axis_magnification_violations_when_every_needed_block_resident", axisViolationsAllResident},
+                            {"atlas_pixels_above_tau_per_axis_capped_by_original", axisAbovePixels - axisViolations},
+                            {"max_atlas_per_axis_level0", maxAxis},
+                            {"atlas_nodes_drawn", atlasNodes},
+                            {"original_leaves_drawn", leaves},
+                            {"texture_binds", binds},
                             {"histogram", histJson}};
   nlohmann::json doc = {{"options", optionsJson(a, o, path)}, {"summary", summary}, {"frames", rows}};
   writeTextFile((fs::path(a.out) / "texel.json").string(), doc.dump(1) + "\n");
@@ -118,8 +178,10 @@ void addTexelCommand(CLI::App& app) {
   auto* texel = app.add_subcommand(
       "texel",
       "Texel-per-pixel analysis. (1) Of an atlas tree over a camera path: per pixel, pixels per texel of the level "
-      "sampled (analytic Jacobian), heat maps, a histogram, and magnification_violations (atlas used although it "
-      "magnifies beyond tau; zero whenever every needed block is resident). (2) Of a recorded frame (.tframe, e.g. from "
+      "sampled (analytic Jacobian), isotropic (GL's rho) and per axis (along the texel's own s and t edges), heat maps "
+      "of both with a colour bar (texel_NNNN.png, texel_axis_NNNN.png), a histogram, and magnification_violations on "
+      "either measure (atlas used although it magnifies beyond tau where the original is finer; isotropic: zero "
+      "whenever every needed block is resident). (2) Of a recorded frame (.tframe, e.g. from "
       "`tessera render SCENE --record F.tframe`): the frame is replayed on the oracle with its LOD probe, which records "
       "for each pixel the lookups of the fragment whose colour is stored (after depth test and discard): rho (GL 4.6 "
       "8.14.1, texels of level 0) and lambda (8.8, after bias and clamps), as the sampler computed them. Writes "

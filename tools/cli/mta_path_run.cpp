@@ -38,9 +38,14 @@ void addPathRunOptions(CLI::App* cmd, PathRunArgs& a, bool withMemory) {
     cmd->add_option("--queue", a.queue, "Request queue length")->capture_default_str();
   }
   addRealOption(cmd, "--tau", a.tau, "Pixel-per-texel ratio at run time (default: the build's)", kPositive);
-  cmd->add_flag("--thesis-distance", a.thesisDistance,
-                "Use the thesis's plain distance test; by default d is scaled by cos^2 of the frustum's corner angle so that "
-                "the tau guarantee holds at every pixel (docs/mta-render.md)");
+  cmd->add_option("--distance-bound", a.distanceBound,
+                  "How the distance test d >= minDistance accounts for off-axis magnification (docs/mta-render.md): node = d "
+                  "times cos^2 of the largest view angle over the node's box clipped to the frustum; corner = d times cos^2 "
+                  "of the frustum's corner angle for every node; both keep the tau guarantee at every pixel, node with fewer "
+                  "nodes; thesis = plain d (the guarantee holds on the view axis only)")
+      ->check(CLI::IsMember({"node", "corner", "thesis"}))
+      ->capture_default_str();
+  cmd->add_flag("--thesis-distance", a.thesisDistance, "The same as --distance-bound thesis");
   addThreadsOption(cmd, a.threads, "Oracle threads; images never depend on it");
   cmd->add_option("--save-every", a.saveEvery, "Write every N-th frame as PNG (0 = none); the last frame is always written")
       ->capture_default_str();
@@ -75,7 +80,7 @@ mta::RendererOptions rendererOptions(const PathRunArgs& a, mta::RenderMode mode)
   // 0 = the build's tau; any value given is checked by --tau's range (kPositive) while parsing.
   if (!(a.tau == 0.0 || kPositive.contains(a.tau))) throw Error("--tau must be a finite number > 0");
   o.tau = a.tau;
-  o.conservative = !a.thesisDistance;
+  o.bound = a.thesisDistance ? mta::DistanceBound::Thesis : mta::parseDistanceBound(a.distanceBound, "--distance-bound");
   o.threads = a.threads;
   if (!kCapacityMiB.contains(a.capacityMiB))
     throw Error("--capacity must be a number of MiB " + kCapacityMiB.describe());
@@ -102,7 +107,7 @@ nlohmann::json optionsJson(const PathRunArgs& a, const mta::RendererOptions& o, 
           {"budget", a.budget == "unlimited" ? std::string("unlimited") : o.residency.budget.describe()},
           {"queue", o.residency.maxQueue},
           {"tau", o.tau},
-          {"distance_test", o.conservative ? "conservative (cos^2 of the corner angle)" : "thesis (plain distance)"}};
+          {"distance_bound", mta::distanceBoundName(o.bound)}};
 }
 
 void writeFramePng(const std::string& path, uint32_t w, uint32_t h, const std::vector<uint8_t>& bottomUp) {
