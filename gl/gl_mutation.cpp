@@ -194,6 +194,15 @@ std::vector<Mutation> build() {
        {{"textured", kTexturedLookup, "const vec4 texel = texture(tex0, v_st, u[8].x).bgra;"}},
        StateFault::None});
 
+  add({"layer_texcoord_swapped",
+       "a second texture layer sampled at the first layer's texcoords (a varying or attribute location mix-up)",
+       "source",
+       "textured_layers looks its light map up at v_st0 instead of v_st1",
+       "",
+       {{"textured_layers", "const vec4 layer = texture(tex1, v_st1, u[8].x);",
+         "const vec4 layer = texture(tex1, v_st0, u[8].x);"}},
+       StateFault::None});
+
   // --- texture sampling --------------------------------------------------------------------------
   add({"texel_centre_1_64",
        "texel centres off by 1/64 texel (a fixed-point texel coordinate rounded wrongly)",

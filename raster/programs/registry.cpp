@@ -16,14 +16,16 @@ const Program& atlasCapture();
 const Program& atlasSprite();
 const Program& atlasCaptureTab();
 const Program& atlasSpriteAo();
+const Program& texturedLayers();
 }  // namespace programs
 
-static const std::array<const Program*, 10>& table() {
-  static const std::array<const Program*, 10> t = {&programs::flatColor(),     &programs::vertexColor(),
+static const std::array<const Program*, 11>& table() {
+  static const std::array<const Program*, 11> t = {&programs::flatColor(),     &programs::vertexColor(),
                                                   &programs::textured(),      &programs::texarrayBatch(),
                                                   &programs::atlasDisplace(), &programs::objectId(),
                                                   &programs::atlasCapture(),  &programs::atlasSprite(),
-                                                  &programs::atlasCaptureTab(), &programs::atlasSpriteAo()};
+                                                  &programs::atlasCaptureTab(), &programs::atlasSpriteAo(),
+                                                  &programs::texturedLayers()};
   return t;
 }
 

@@ -44,5 +44,6 @@ void buildRttaFiveTransparent(CommandList& cl, int w, int h);
 void buildRttaFiveGhosted(CommandList& cl, int w, int h);
 void buildRttaFiveGhostedAo(CommandList& cl, int w, int h);
 void buildRttaFiveAoPost(CommandList& cl, int w, int h);
+void buildLightMap(CommandList& cl, int w, int h);
 
 }  // namespace tessera::scenes
