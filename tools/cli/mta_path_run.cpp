@@ -41,6 +41,10 @@ void addPathRunOptions(CLI::App* cmd, PathRunArgs& a, bool withMemory) {
   cmd->add_flag("--thesis-distance", a.thesisDistance,
                 "Use the thesis's plain distance test; by default d is scaled by cos^2 of the frustum's corner angle so that "
                 "the tau guarantee holds at every pixel (docs/mta-render.md)");
+  cmd->add_flag("--no-group-binds", a.noGroupBinds,
+                "Record the draws leaf by leaf as the traversal emits them, binding a leaf's original textures again for "
+                "every leaf; by default draws are grouped by texture, so each texture is bound once a frame (same triangles "
+                "and depth test; only pixels where two fragments tie in depth can differ, docs/mta-render.md)");
   addThreadsOption(cmd, a.threads, "Oracle threads; images never depend on it");
   cmd->add_option("--save-every", a.saveEvery, "Write every N-th frame as PNG (0 = none); the last frame is always written")
       ->capture_default_str();
@@ -76,6 +80,7 @@ mta::RendererOptions rendererOptions(const PathRunArgs& a, mta::RenderMode mode)
   if (!(a.tau == 0.0 || kPositive.contains(a.tau))) throw Error("--tau must be a finite number > 0");
   o.tau = a.tau;
   o.conservative = !a.thesisDistance;
+  o.groupBinds = !a.noGroupBinds;
   o.threads = a.threads;
   if (!kCapacityMiB.contains(a.capacityMiB))
     throw Error("--capacity must be a number of MiB " + kCapacityMiB.describe());
@@ -102,7 +107,8 @@ nlohmann::json optionsJson(const PathRunArgs& a, const mta::RendererOptions& o, 
           {"budget", a.budget == "unlimited" ? std::string("unlimited") : o.residency.budget.describe()},
           {"queue", o.residency.maxQueue},
           {"tau", o.tau},
-          {"distance_test", o.conservative ? "conservative (cos^2 of the corner angle)" : "thesis (plain distance)"}};
+          {"distance_test", o.conservative ? "conservative (cos^2 of the corner angle)" : "thesis (plain distance)"},
+          {"draw_order", o.groupBinds ? "grouped by texture" : "leaf by leaf (--no-group-binds)"}};
 }
 
 void writeFramePng(const std::string& path, uint32_t w, uint32_t h, const std::vector<uint8_t>& bottomUp) {

@@ -27,6 +27,7 @@ struct PathRunArgs {
   uint32_t queue = 32;
   double tau = 0.0;
   bool thesisDistance = false;
+  bool noGroupBinds = false;  // planFrame's leaf-by-leaf draw order (RendererOptions::groupBinds off)
   int threads = 0;
   uint32_t saveEvery = 25;    // 0 = no frame images
   bool quiet = false;
