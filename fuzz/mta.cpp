@@ -1,7 +1,8 @@
 // Fuzz target `mta`: the atlas tree paging file reader and validator (mta/paging_file.h) and what the
 // renderer does with a file that passed it, short of drawing: the runtime geometry
 // (mta/runtime_geometry.h), the block index, the usage traversal and the rendering traversal of
-// mta/traversal.h in all three modes, and reading blocks (the root atlas and the smaller original images).
+// mta/traversal.h in all three modes with the draws grouped by texture (mta/draw_order.h), and reading
+// blocks (the root atlas and the smaller original images).
 //
 // The input is a .mta file, written to the scratch directory because PagingFile takes a path. Before that,
 // the fields a mutation cannot keep consistent by chance are recomputed: the file size (bytes 16..23), the
@@ -22,6 +23,7 @@
 #include "base/sha256.h"
 #include "fuzz/fuzz_support.h"
 #include "mta/camera_path.h"
+#include "mta/draw_order.h"
 #include "mta/paging_file.h"
 #include "mta/runtime_geometry.h"
 #include "mta/traversal.h"
@@ -94,8 +96,10 @@ void traverse(const PagingFile& file) {
     (void)usagePriorities(meta, index, ctx);
     // Every third block missing, so that the traversal also takes its "refinement impossible" path.
     auto someResident = [](uint32_t b) { return b % 3 != 1; };
-    for (RenderMode mode : {RenderMode::AtlasTree, RenderMode::Original, RenderMode::Dummy})
-      (void)planFrame(meta, geometry, index, ctx, mode, someResident);
+    for (RenderMode mode : {RenderMode::AtlasTree, RenderMode::Original, RenderMode::Dummy}) {
+      FramePlan plan = planFrame(meta, geometry, index, ctx, mode, someResident);
+      groupDrawsByTexture(plan);
+    }
   }
 }
 

@@ -33,6 +33,7 @@ mta::RendererOptions rendererOptions() {
   o.height = kHeight;
   o.tau = 0.0;
   o.bound = mta::DistanceBound::PerNode;
+  o.groupBinds = true;
   o.threads = 0;
   o.residency.capacityBytes = uint64_t(kCapacityMiB * 1048576.0);
   o.residency.budget = mta::LoadBudget::parse(kBudget, "--budget");

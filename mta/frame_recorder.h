@@ -3,13 +3,14 @@
 //
 // Implements: the frame's resources (one RGBA8 colour target and a D32F depth target, the runtime
 // vertex array, one texture with a full mip chain per texture bound this frame, the samplers, all before
-// the first draw) and its
-// commands in plan order: an atlas draw binds the node's atlas, sets the texture matrix diag(2^level)
-// (§4.5.4, REPEAT addressing) and draws root-atlas texcoords; an original draw binds the scene texture
-// with its wrap modes and the identity matrix and draws the original texcoords; the dummy run uses a 1x1
-// white texture, untextured triangles the same with a grey tint (slot 7). Filtering is trilinear everywhere (LINEAR_MIPMAP_LINEAR), mip
-// chains come from the documented box filter (raster/texture.h). Alpha is not tested or blended: the
-// thesis's comparison runs did the same (§4.7.2) so that texture content cannot change the frame cost.
+// the first draw) and its commands in plan order (TreeRenderer groups the plan by texture first,
+// draw_order.h): an atlas draw binds the node's atlas, sets the texture matrix diag(2^level) (§4.5.4,
+// REPEAT addressing) and draws root-atlas texcoords; an original draw binds the scene texture with its
+// wrap modes and the identity matrix and draws the original texcoords; the dummy run uses a 1x1 white
+// texture, untextured triangles the same with a grey tint (slot 7). Filtering is trilinear everywhere
+// (LINEAR_MIPMAP_LINEAR), mip chains come from the documented box filter (raster/texture.h). Alpha is not
+// tested or blended: the thesis's comparison runs did the same (§4.7.2) so that texture content cannot
+// change the frame cost.
 // The id variant draws the same triangles with "object_id" into two R32UI targets: attachment 0 holds
 // the global triangle index (runtime_geometry.h), 0xffffffff where nothing was drawn.
 // Does not implement: choosing draws (traversal.h), the mip chains of the textures it uploads

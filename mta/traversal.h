@@ -17,7 +17,8 @@
 // - the draw plan: which node atlases and which original textures draw which triangle ranges, for the
 //   atlas tree and for the comparison runs of the thesis's §4.7.2 (original textures for every visible
 //   leaf; one dummy texture for everything).
-// Does not implement: loading (residency.h), command recording (frame_recorder.h).
+// Does not implement: loading (residency.h), the order draws are recorded in (draw_order.h: planFrame
+// emits them leaf by leaf, untextured ones last), command recording (frame_recorder.h).
 #pragma once
 
 #include <array>
@@ -99,7 +100,8 @@ enum class DrawSource : uint8_t { Atlas, Original, White, Untextured };
 struct PlannedDraw {
   DrawSource source = DrawSource::Atlas;
   uint8_t tree = 0;
-  uint32_t node = 0;      // Atlas: the node whose atlas is bound; Original: the leaf
+  uint32_t node = 0;      // Atlas: the node whose atlas is bound; Original: the leaf (the first, once
+                          // groupDrawsByTexture merged contiguous ranges of several leaves)
   int32_t texture = -1;   // Original: scene texture
   uint32_t first = 0, count = 0;  // global triangles (runtime_geometry.h)
 };

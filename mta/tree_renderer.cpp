@@ -57,6 +57,7 @@ FrameResult TreeRenderer::renderFrame(const Camera& camera) {
     r.capacityBytes = residency_->capacity();
   }
   r.plan = planFrame(meta, geometry_, index_, ctx, options_.mode, resident);
+  if (options_.groupBinds) groupDrawsByTexture(r.plan);
   r.updateMs = msSince(t0);
 
   t0 = std::chrono::steady_clock::now();

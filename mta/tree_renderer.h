@@ -3,7 +3,8 @@
 //
 // Implements: per frame, in this order: the usage traversal and the memory manager's update (loading
 // within the budget happens before the frame is drawn, so frame 0 already has what the budget allowed),
-// the rendering traversal over what is in memory, recording, and execution on the CPU oracle; the
+// the rendering traversal over what is in memory, the draws grouped by texture (draw_order.h, unless
+// RendererOptions::groupBinds is off), recording, and execution on the CPU oracle; the
 // frame's statistics (counters from the recorded list, residency, timings) as JSON with plain keys.
 // Does not implement: camera paths (camera_path.h), files and plots (tools/cli/cmd_mta_render.cpp).
 #pragma once
@@ -12,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "mta/draw_order.h"
 #include "mta/frame_recorder.h"
 #include "mta/paging_file.h"
 #include "mta/residency.h"
@@ -31,6 +33,9 @@ struct RendererOptions {
   uint32_t width = 1024, height = 768;
   double tau = 0.0;               // 0 = the build's τ
   DistanceBound bound = DistanceBound::PerNode;  // see traversal.h
+  // Record the draws grouped by texture (draw_order.h): each texture bound once a frame. false keeps
+  // planFrame's leaf-by-leaf order (`--no-group-binds`), for comparison. Every mode, the comparison runs too.
+  bool groupBinds = true;
   int threads = 0;                // oracle threads; the bytes never depend on it
 };
 

@@ -375,6 +375,20 @@ PY
     "$tessera" mta render tree.mta --frames 40 --size 160x120 --capacity 8 --budget 2blocks --save-every 0 --threads 1 -o render1 --quiet > /dev/null
     python3 -c "import json,sys; a,b=[[f['image_sha256'] for f in json.load(open(p))['frames']] for p in sys.argv[1:]]; assert a==b" \
       render/frames.json render1/frames.json || fail "frames differ between thread counts"
+    # --no-group-binds records the traversal's leaf-by-leaf order: the same nodes and triangles, and no
+    # fewer binds (grouped, each texture is bound once; this city's textures all have their own images).
+    "$tessera" mta render tree.mta --frames 40 --size 160x120 --capacity 8 --budget 2blocks --save-every 0 --no-group-binds \
+      -o render2 --quiet > /dev/null
+    python3 - render/frames.json render2/frames.json <<'PY' || fail "--no-group-binds does not draw what the grouped render draws"
+import json, sys
+g, u = [json.load(open(p)) for p in sys.argv[1:]]
+assert g["options"]["draw_order"] == "grouped by texture", g["options"]
+assert u["options"]["draw_order"] == "leaf by leaf (--no-group-binds)", u["options"]
+for a, b in zip(g["frames"], u["frames"]):
+    for k in ("triangles_drawn", "leaves_drawn", "nodes_with_atlas", "nodes_with_original_textures", "blocks_resident"):
+        assert a[k] == b[k], (a["frame"], k, a[k], b[k])
+    assert a["texture_binds"] <= b["texture_binds"], (a["frame"], a["texture_binds"], b["texture_binds"])
+PY
     "$tessera" texel tree.mta --frames 20 --size 160x120 --budget unlimited --capacity 512 --save-every 10 -o texel --quiet > texel.json
     [ "$(json_field texel.json "['magnification_violations_when_every_needed_block_resident']")" = "0" ] || fail "violations: $(cat texel.json)"
     for f in texel.json histogram.png texel_0000.png texel_0019.png texel_axis_0000.png; do [ -s "texel/$f" ] || fail "texel did not write $f"; done

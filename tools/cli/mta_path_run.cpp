@@ -46,6 +46,10 @@ void addPathRunOptions(CLI::App* cmd, PathRunArgs& a, bool withMemory) {
       ->check(CLI::IsMember({"node", "corner", "thesis"}))
       ->capture_default_str();
   cmd->add_flag("--thesis-distance", a.thesisDistance, "The same as --distance-bound thesis");
+  cmd->add_flag("--no-group-binds", a.noGroupBinds,
+                "Record the draws leaf by leaf as the traversal emits them, binding a leaf's original textures again for "
+                "every leaf; by default draws are grouped by texture, so each texture is bound once a frame (same triangles "
+                "and depth test; only pixels where two fragments tie in depth can differ, docs/mta-render.md)");
   addThreadsOption(cmd, a.threads, "Oracle threads; images never depend on it");
   cmd->add_option("--save-every", a.saveEvery, "Write every N-th frame as PNG (0 = none); the last frame is always written")
       ->capture_default_str();
@@ -81,6 +85,7 @@ mta::RendererOptions rendererOptions(const PathRunArgs& a, mta::RenderMode mode)
   if (!(a.tau == 0.0 || kPositive.contains(a.tau))) throw Error("--tau must be a finite number > 0");
   o.tau = a.tau;
   o.bound = a.thesisDistance ? mta::DistanceBound::Thesis : mta::parseDistanceBound(a.distanceBound, "--distance-bound");
+  o.groupBinds = !a.noGroupBinds;
   o.threads = a.threads;
   if (!kCapacityMiB.contains(a.capacityMiB))
     throw Error("--capacity must be a number of MiB " + kCapacityMiB.describe());
@@ -107,7 +112,8 @@ nlohmann::json optionsJson(const PathRunArgs& a, const mta::RendererOptions& o, 
           {"budget", a.budget == "unlimited" ? std::string("unlimited") : o.residency.budget.describe()},
           {"queue", o.residency.maxQueue},
           {"tau", o.tau},
-          {"distance_bound", mta::distanceBoundName(o.bound)}};
+          {"distance_bound", mta::distanceBoundName(o.bound)},
+          {"draw_order", o.groupBinds ? "grouped by texture" : "leaf by leaf (--no-group-binds)"}};
 }
 
 void writeFramePng(const std::string& path, uint32_t w, uint32_t h, const std::vector<uint8_t>& bottomUp) {

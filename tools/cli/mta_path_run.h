@@ -28,6 +28,7 @@ struct PathRunArgs {
   double tau = 0.0;
   bool thesisDistance = false;
   std::string distanceBound = "node";
+  bool noGroupBinds = false;  // planFrame's leaf-by-leaf draw order (RendererOptions::groupBinds off)
   int threads = 0;
   uint32_t saveEvery = 25;    // 0 = no frame images
   bool quiet = false;

@@ -1,0 +1,58 @@
+#include "mta/draw_order.h"
+
+#include <algorithm>
+#include <unordered_map>
+
+namespace tessera::mta {
+
+namespace {
+
+// The texture a draw binds (the recorder's unit 0), as one number: the source in the top bits, then
+// (tree, node) for an atlas and the scene texture for an original. White and Untextured bind the same
+// 1x1 texture but differ in the tint, so they are two keys.
+uint64_t textureKey(const PlannedDraw& d) {
+  const uint64_t src = uint64_t(d.source) << 60;
+  switch (d.source) {
+    case DrawSource::Atlas:
+      return src | (uint64_t(d.tree) << 32) | d.node;
+    case DrawSource::Original:
+      return src | uint32_t(d.texture);
+    case DrawSource::White:
+    case DrawSource::Untextured:
+      return src;
+  }
+  return src;
+}
+
+}  // namespace
+
+void groupDrawsByTexture(FramePlan& plan) {
+  std::vector<PlannedDraw>& draws = plan.draws;
+  if (draws.size() < 2) return;
+  // Rank of each key's first appearance; a draw is sorted by the rank of its key.
+  std::unordered_map<uint64_t, uint32_t> rankOf;
+  rankOf.reserve(draws.size());
+  std::vector<std::pair<uint32_t, uint32_t>> order(draws.size());  // (rank, plan position)
+  for (size_t i = 0; i < draws.size(); ++i) {
+    const auto [it, fresh] = rankOf.emplace(textureKey(draws[i]), uint32_t(rankOf.size()));
+    order[i] = {it->second, uint32_t(i)};
+  }
+  // (rank, position) pairs are distinct, so this is the stable sort by rank, without depending on the
+  // standard library's stable_sort.
+  std::sort(order.begin(), order.end());
+  std::vector<PlannedDraw> out;
+  out.reserve(draws.size());
+  uint32_t lastRank = UINT32_MAX;
+  for (const auto& [rank, i] : order) {
+    const PlannedDraw& d = draws[i];
+    if (rank == lastRank && out.back().first + out.back().count == d.first) {
+      out.back().count += d.count;  // the same texture and state over a contiguous range: one draw
+      continue;
+    }
+    out.push_back(d);
+    lastRank = rank;
+  }
+  draws = std::move(out);
+}
+
+}  // namespace tessera::mta
