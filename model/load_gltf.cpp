@@ -92,7 +92,7 @@ bool stashImage(tinygltf::Image* image, const int index, std::string*, std::stri
   return true;
 }
 
-// The texcoord set and KHR_texture_transform of one material's base colour texture.
+// The texcoord set and KHR_texture_transform of one of a material's textures.
 struct UvSource {
   int set = 0;
   bool transform = false;
@@ -104,9 +104,9 @@ double number(const std::string& path, const nlohmann::json& j, const std::strin
   return j.get<double>();
 }
 
-UvSource uvSource(const std::string& path, const nlohmann::json& root, size_t materialIndex) {
+// ptr: the texture info object (".../baseColorTexture", ".../occlusionTexture").
+UvSource uvSource(const std::string& path, const nlohmann::json& root, const std::string& ptr) {
   UvSource s;
-  const std::string ptr = "/materials/" + std::to_string(materialIndex) + "/pbrMetallicRoughness/baseColorTexture";
   const nlohmann::json::json_pointer jp(ptr);
   if (!root.contains(jp)) return s;
   const nlohmann::json& ti = root.at(jp);
@@ -180,26 +180,38 @@ class Builder {
                                                 : AlphaMode::Opaque;
       mat.alphaCutoff = float(gm.alphaCutoff);
       mat.doubleSided = gm.doubleSided;
-      const int ti = gm.pbrMetallicRoughness.baseColorTexture.index;
-      const std::string ptr = "/materials/" + std::to_string(i) + "/pbrMetallicRoughness/baseColorTexture/index";
-      if (ti >= 0) {
-        if (size_t(ti) >= m_.textures.size()) fail(path_, ptr, std::to_string(ti) + " is not a texture index");
-        const tinygltf::Texture& t = m_.textures[size_t(ti)];
-        if (t.source < 0 || size_t(t.source) >= m_.images.size())
-          fail(path_, "/textures/" + std::to_string(ti) + "/source",
-               std::to_string(t.source) + " is not an image index");
-        mat.baseColorTexture = t.source;
-        if (t.sampler >= 0) {
-          if (size_t(t.sampler) >= m_.samplers.size())
-            fail(path_, "/textures/" + std::to_string(ti) + "/sampler",
-                 std::to_string(t.sampler) + " is not a sampler index");
-          mat.wrapS = wrapOf(m_.samplers[size_t(t.sampler)].wrapS);
-          mat.wrapT = wrapOf(m_.samplers[size_t(t.sampler)].wrapT);
-        }
+      const std::string mptr = "/materials/" + std::to_string(i);
+      mat.baseColorTexture = textureImage(gm.pbrMetallicRoughness.baseColorTexture.index,
+                                          mptr + "/pbrMetallicRoughness/baseColorTexture/index", mat.wrapS, mat.wrapT);
+      mat.occlusionTexture =
+          textureImage(gm.occlusionTexture.index, mptr + "/occlusionTexture/index", mat.occlusionWrapS, mat.occlusionWrapT);
+      if (mat.occlusionTexture >= 0) {
+        const double strength = gm.occlusionTexture.strength;
+        // glTF 2.0 §5.25 (material.occlusionTextureInfo.strength): a number in [0, 1].
+        if (!(strength >= 0.0 && strength <= 1.0))
+          fail(path_, mptr + "/occlusionTexture/strength", "expected a number in [0, 1], got " + std::to_string(strength));
+        mat.occlusionStrength = float(strength);
       }
       out_.materials.push_back(mat);
-      uv_.push_back(uvSource(path_, root_, i));
+      uv_.push_back(uvSource(path_, root_, "/materials/" + std::to_string(i) + "/pbrMetallicRoughness/baseColorTexture"));
+      occlusionUv_.push_back(uvSource(path_, root_, "/materials/" + std::to_string(i) + "/occlusionTexture"));
     }
+  }
+
+  // The image of texture `ti` (-1: none) and its sampler's wrap modes; ptr names the index's field.
+  int32_t textureImage(int ti, const std::string& ptr, Wrap& wrapS, Wrap& wrapT) const {
+    if (ti < 0) return -1;
+    if (size_t(ti) >= m_.textures.size()) fail(path_, ptr, std::to_string(ti) + " is not a texture index");
+    const tinygltf::Texture& t = m_.textures[size_t(ti)];
+    if (t.source < 0 || size_t(t.source) >= m_.images.size())
+      fail(path_, "/textures/" + std::to_string(ti) + "/source", std::to_string(t.source) + " is not an image index");
+    if (t.sampler >= 0) {
+      if (size_t(t.sampler) >= m_.samplers.size())
+        fail(path_, "/textures/" + std::to_string(ti) + "/sampler", std::to_string(t.sampler) + " is not a sampler index");
+      wrapS = wrapOf(m_.samplers[size_t(t.sampler)].wrapS);
+      wrapT = wrapOf(m_.samplers[size_t(t.sampler)].wrapT);
+    }
+    return t.source;
   }
 
   uint32_t defaultMaterial() {
@@ -207,6 +219,7 @@ class Builder {
       defaultMaterial_ = int(out_.materials.size());
       out_.materials.push_back(Material{.name = "default"});
       uv_.push_back(UvSource{});
+      occlusionUv_.push_back(UvSource{});
     }
     return uint32_t(defaultMaterial_);
   }
@@ -231,15 +244,10 @@ class Builder {
       const uint64_t nv = reader_.check(pos->second, 3, ptr + "/attributes/POSITION");
       // The texcoord set the material's texture reads must exist: without it the texture could not be
       // mapped, and the material would silently render as its factor alone.
-      const UvSource& uv = uv_[material];
-      const std::string set = "TEXCOORD_" + std::to_string(uv.set);
-      const auto tc = prim.attributes.find(set);
-      if (tc == prim.attributes.end() && out_.materials[material].baseColorTexture >= 0)
-        fail(path_, ptr + "/attributes",
-             "material " + std::to_string(material) + "'s base colour texture reads texCoord " +
-                 std::to_string(uv.set) + " (" + set + "), which this primitive does not have");
-      if (tc != prim.attributes.end() && reader_.check(tc->second, 2, ptr + "/attributes/" + set) != nv)
-        fail(path_, ptr + "/attributes/" + set, "count differs from POSITION's");
+      checkTexcoords(prim, ptr, material, uv_[material], out_.materials[material].baseColorTexture >= 0,
+                     "base colour texture", nv);
+      checkTexcoords(prim, ptr, material, occlusionUv_[material], out_.materials[material].occlusionTexture >= 0,
+                     "occlusion texture", nv);
       const auto nrm = prim.attributes.find("NORMAL");
       if (nrm != prim.attributes.end() && reader_.count(nrm->second, ptr + "/attributes/NORMAL") == nv)
         reader_.check(nrm->second, 3, ptr + "/attributes/NORMAL");
@@ -249,6 +257,42 @@ class Builder {
       cost.vertices = saturatingAdd(cost.vertices, nv);
     }
     return cost;
+  }
+
+  void checkTexcoords(const tinygltf::Primitive& prim, const std::string& ptr, uint32_t material, const UvSource& uv,
+                      bool used, const char* what, uint64_t nv) {
+    const std::string set = "TEXCOORD_" + std::to_string(uv.set);
+    const auto tc = prim.attributes.find(set);
+    if (tc == prim.attributes.end() && used)
+      fail(path_, ptr + "/attributes",
+           "material " + std::to_string(material) + "'s " + what + " reads texCoord " + std::to_string(uv.set) + " (" +
+               set + "), which this primitive does not have");
+    if (tc != prim.attributes.end() && reader_.check(tc->second, 2, ptr + "/attributes/" + set) != nv)
+      fail(path_, ptr + "/attributes/" + set, "count differs from POSITION's");
+  }
+
+  // The texcoords of set uv.set after its KHR_texture_transform; empty when the primitive lacks the set.
+  std::vector<glm::vec2> texcoords(const tinygltf::Primitive& prim, const std::string& ptr, const UvSource& uv, size_t nv) {
+    std::vector<glm::vec2> out;
+    const auto tc = prim.attributes.find("TEXCOORD_" + std::to_string(uv.set));
+    if (tc == prim.attributes.end()) return out;
+    const std::string tptr = ptr + "/attributes/TEXCOORD_" + std::to_string(uv.set);
+    if (reader_.count(tc->second, tptr) != nv) fail(path_, tptr, "count differs from POSITION's");
+    const std::vector<float> t = reader_.floats(tc->second, 2, tptr);
+    out.resize(nv);
+    // KHR_texture_transform: uv' = offset + R * (scale * uv) with u' = cos u + sin v, v' = -sin u + cos v: the
+    // reading under which the extension's own example (offset [0, 1], rotation pi/2, scale 0.5) selects the
+    // lower-left quadrant, as the reference viewers and the TextureTransformTest sample model do.
+    const double c = uv.transform ? detCos(uv.rotation) : 1.0, s = uv.transform ? detSin(uv.rotation) : 0.0;
+    for (size_t i = 0; i < nv; ++i) {
+      if (!uv.transform) {
+        out[i] = {t[i * 2], t[i * 2 + 1]};
+        continue;
+      }
+      const double u = double(t[i * 2]) * uv.scale[0], v = double(t[i * 2 + 1]) * uv.scale[1];
+      out[i] = {float(c * u + s * v + uv.offset[0]), float(-s * u + c * v + uv.offset[1])};
+    }
+    return out;
   }
 
   uint32_t materialOf(const tinygltf::Primitive& prim, const std::string& ptr) {
@@ -293,27 +337,9 @@ class Builder {
       const glm::vec3 v{p[i * 3], p[i * 3 + 1], p[i * 3 + 2]};
       mesh.positions[i] = identity ? v : transformPoint(world, v);
     }
-    const UvSource& uv = uv_[mesh.material];
-    const auto tc = prim.attributes.find("TEXCOORD_" + std::to_string(uv.set));
-    if (tc != prim.attributes.end()) {
-      const std::string tptr = ptr + "/attributes/TEXCOORD_" + std::to_string(uv.set);
-      if (reader_.count(tc->second, tptr) != nv) fail(path_, tptr, "count differs from POSITION's");
-      const std::vector<float> t = reader_.floats(tc->second, 2, tptr);
-      mesh.texcoords.resize(nv);
-      // KHR_texture_transform: uv' = offset + R * (scale * uv) with u' = cos u + sin v, v' = -sin u + cos v: the
-      // reading under which the extension's own example (offset [0, 1], rotation pi/2, scale 0.5) selects the
-      // lower-left quadrant, as the reference viewers and the TextureTransformTest sample model do.
-      const double c = uv.transform ? detCos(uv.rotation) : 1.0,
-                   s = uv.transform ? detSin(uv.rotation) : 0.0;
-      for (size_t i = 0; i < nv; ++i) {
-        if (!uv.transform) {
-          mesh.texcoords[i] = {t[i * 2], t[i * 2 + 1]};
-          continue;
-        }
-        const double u = double(t[i * 2]) * uv.scale[0], v = double(t[i * 2 + 1]) * uv.scale[1];
-        mesh.texcoords[i] = {float(c * u + s * v + uv.offset[0]), float(-s * u + c * v + uv.offset[1])};
-      }
-    }
+    mesh.texcoords = texcoords(prim, ptr, uv_[mesh.material], nv);
+    if (out_.materials[mesh.material].occlusionTexture >= 0)
+      mesh.occlusionTexcoords = texcoords(prim, ptr, occlusionUv_[mesh.material], nv);
     const auto nrm = prim.attributes.find("NORMAL");
     if (nrm != prim.attributes.end() && reader_.count(nrm->second, ptr + "/attributes/NORMAL") == nv) {
       const std::vector<float> n = reader_.floats(nrm->second, 3, ptr + "/attributes/NORMAL");
@@ -356,7 +382,7 @@ class Builder {
   Model& out_;
   ObjectSink objects_{out_};  // one object per node instance (docs/model-import.md "Objects")
   Reader reader_;
-  std::vector<UvSource> uv_;  // per material
+  std::vector<UvSource> uv_, occlusionUv_;  // per material: the base colour and the occlusion texture
   int defaultMaterial_ = -1;
   size_t skippedNonTriangles_ = 0;
 };

@@ -63,6 +63,12 @@ struct Material {
   float alphaCutoff = 0.5f;  // Mask only
   bool doubleSided = false;
   Wrap wrapS = Wrap::Repeat, wrapT = Wrap::Repeat;
+  // glTF occlusionTexture (a second texture layer, thesis §5.1.3; R holds the occlusion): index into
+  // Model::textures or -1, its strength, its sampler's wrap modes. Read from its own texCoord set
+  // (Mesh::occlusionTexcoords). Formats without one leave it at -1.
+  int32_t occlusionTexture = -1;
+  float occlusionStrength = 1.0f;
+  Wrap occlusionWrapS = Wrap::Repeat, occlusionWrapT = Wrap::Repeat;
 };
 
 // One material's triangles. texcoords and normals are either empty or one per position.
@@ -71,6 +77,7 @@ struct Mesh {
   uint32_t material = 0;  // index into Model::materials (always valid)
   std::vector<glm::vec3> positions;
   std::vector<glm::vec2> texcoords;  // the set the material's texture uses (TEXCOORD_n / UV channel n)
+  std::vector<glm::vec2> occlusionTexcoords;  // the set its occlusionTexture uses; empty without one
   std::vector<glm::vec3> normals;
   std::vector<uint32_t> indices;  // 3 per triangle
   uint32_t object = 0;            // index into Model::objects: the scene-graph object this mesh came from

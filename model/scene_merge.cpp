@@ -24,6 +24,8 @@ std::string materialKey(const Material& m) {
   put(&m.baseColorTexture, sizeof m.baseColorTexture);
   put(m.baseColorFactor.data(), sizeof(float) * 4);
   put(&m.alphaMode, 1), put(&m.alphaCutoff, sizeof(float)), put(&m.doubleSided, 1), put(&m.wrapS, 1), put(&m.wrapT, 1);
+  put(&m.occlusionTexture, sizeof m.occlusionTexture), put(&m.occlusionStrength, sizeof(float));
+  put(&m.occlusionWrapS, 1), put(&m.occlusionWrapT, 1);
   return k;
 }
 
@@ -63,6 +65,7 @@ class SceneBuilder {
 
   uint32_t material(Material m, const std::vector<int32_t>& textureMap) {
     if (m.baseColorTexture >= 0) m.baseColorTexture = textureMap.at(size_t(m.baseColorTexture));
+    if (m.occlusionTexture >= 0) m.occlusionTexture = textureMap.at(size_t(m.occlusionTexture));
     const auto [it, added] = materials_.emplace(materialKey(m), uint32_t(out_.materials.size()));
     if (added) out_.materials.push_back(std::move(m));
     return it->second;

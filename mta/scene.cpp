@@ -47,28 +47,39 @@ Scene sceneFromModel(std::shared_ptr<const model::Model> m) {
     s.images[i] = SceneImage{info.width, info.height, m->textures[i].name};
   }
   std::map<std::tuple<uint32_t, int, int>, int32_t> texIndex;  // (image, wrapS, wrapT) -> texture, in first-use order
+  auto textureOf = [&](int32_t image, model::Wrap wrapS, model::Wrap wrapT) {
+    const auto key = std::make_tuple(uint32_t(image), int(wrapS), int(wrapT));
+    auto it = texIndex.find(key);
+    if (it == texIndex.end()) {
+      it = texIndex.emplace(key, int32_t(s.textures.size())).first;
+      s.textures.push_back(SceneTexture{uint32_t(image), wrapS, wrapT});
+    }
+    return it->second;
+  };
+  // A glTF occlusionTexture is layer 1 (thesis §5.1.3), read from its own texcoord set; the layer exists
+  // when any material has one, and triangles of the others have none in it (-1).
+  bool occlusion = false;
+  for (const model::Mesh& mesh : m->meshes)
+    occlusion = occlusion || (m->materials[mesh.material].occlusionTexture >= 0 && !mesh.occlusionTexcoords.empty());
   Geometry& g = s.geometry;
-  g.layers.resize(1);
+  g.layers.resize(occlusion ? 2 : 1);
   for (const model::Mesh& mesh : m->meshes) {
     const model::Material& mat = m->materials[mesh.material];
-    int32_t tex = -1;
-    if (mat.baseColorTexture >= 0 && !mesh.texcoords.empty()) {
-      const auto key = std::make_tuple(uint32_t(mat.baseColorTexture), int(mat.wrapS), int(mat.wrapT));
-      auto it = texIndex.find(key);
-      if (it == texIndex.end()) {
-        it = texIndex.emplace(key, int32_t(s.textures.size())).first;
-        s.textures.push_back(SceneTexture{uint32_t(mat.baseColorTexture), mat.wrapS, mat.wrapT});
-      }
-      tex = it->second;
-    }
+    const int32_t tex =
+        mat.baseColorTexture >= 0 && !mesh.texcoords.empty() ? textureOf(mat.baseColorTexture, mat.wrapS, mat.wrapT) : -1;
+    const int32_t occ = occlusion && mat.occlusionTexture >= 0 && !mesh.occlusionTexcoords.empty()
+                            ? textureOf(mat.occlusionTexture, mat.occlusionWrapS, mat.occlusionWrapT)
+                            : -1;
     const uint8_t alpha = mat.alphaMode == model::AlphaMode::Opaque ? 0 : 1;
     for (size_t t = 0; t < mesh.triangleCount(); ++t) {
       for (int k = 0; k < 3; ++k) {
         const uint32_t idx = mesh.indices[t * 3 + k];
         g.positions.push_back(mesh.positions[idx]);
         g.layers[0].uv.push_back(tex >= 0 ? mesh.texcoords[idx] : glm::vec2{});
+        if (occlusion) g.layers[1].uv.push_back(occ >= 0 ? mesh.occlusionTexcoords[idx] : glm::vec2{});
       }
       g.layers[0].texture.push_back(tex);
+      if (occlusion) g.layers[1].texture.push_back(occ);
       g.source.push_back(uint32_t(g.source.size()));
       g.alpha.push_back(alpha);
     }
