@@ -48,6 +48,11 @@ struct CityOptions {
   // One glTF per building (and one for the ground) under DIR/parts/ plus the scene manifest
   // DIR/<preset>.json instead of DIR/<preset>.gltf; CitySummary::gltf is then the manifest.
   bool splitPerBuilding = false;
+  // A light-map layer (issue 14 §5; thesis §5.1.3): one grey image DIR/lightmap.png, bright at the top
+  // of each texture repeat and darker towards its bottom (v = 1), given to every textured material as its
+  // glTF occlusionTexture on texCoord 0 (REPEAT, strength 1). It reads layer 0's own texcoords, so it is
+  // a function of them and the atlas tree's layer-1 atlases are exact however often a facade repeats.
+  bool lightMap = false;
 };
 
 struct CitySummary {

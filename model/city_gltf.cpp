@@ -43,6 +43,26 @@ void writeImageFile(const std::string& path, const TexSpec& t, const std::vector
   writeImage8(path, int(t.width), int(t.height), t.rgba() ? 4 : 3, px.data(), o);
 }
 
+uint64_t fileSize(const std::string& path);
+
+constexpr const char* kLightMapName = "lightmap.png";
+constexpr int kLightMapSize = 64;
+
+// DIR/lightmap.png (CityOptions::lightMap): grey, 255 at row 0 (v = 0, the top of a texture repeat)
+// falling linearly to 129 at the last row.
+void writeLightMap(const CityOptions& o, CitySummary& s) {
+  std::vector<uint8_t> px(size_t(kLightMapSize) * kLightMapSize * 3);
+  for (int y = 0; y < kLightMapSize; ++y)
+    for (int x = 0; x < kLightMapSize; ++x)
+      for (int c = 0; c < 3; ++c) px[(size_t(y) * kLightMapSize + size_t(x)) * 3 + size_t(c)] = uint8_t(255 - 2 * y);
+  Image8Options io;
+  io.pngCompressionLevel = 1;
+  const std::string path = o.outDir + "/" + kLightMapName;
+  writeImage8(path, kLightMapSize, kLightMapSize, 3, px.data(), io);
+  s.files.push_back(kLightMapName);
+  s.bytesOnDisk += fileSize(path);
+}
+
 uint64_t fileSize(const std::string& path) {
   std::error_code ec;
   const auto n = fs::file_size(path, ec);
@@ -102,9 +122,10 @@ std::vector<std::string> writeTextures(const Scene& scene, const CityOptions& o,
 
 // Writes dir/<scene.name>.gltf and .bin. Texture i of `scene` is image `imageUris[i]` and its material is
 // named m<textureIds[i]> (the numbering of the whole city, which a part of it keeps).
+// With o.lightMap, `lightMapUri` is the light map's image relative to the file.
 std::string writeGltf(const Scene& scene, const std::vector<std::string>& imageUris,
                       const std::vector<uint32_t>& textureIds, const std::string& dir, const CityOptions& o,
-                      CitySummary& s) {
+                      CitySummary& s, const std::string& lightMapUri) {
   const bool jpg = o.format == CityImageFormat::Jpg;
   const size_t nt = scene.textures.size();
   // Geometry: three bufferViews (positions, texcoords, indices) in one .bin.
@@ -162,16 +183,24 @@ std::string writeGltf(const Scene& scene, const std::vector<std::string>& imageU
   }
   nlohmann::json materials = nlohmann::json::array(), textures = nlohmann::json::array(),
                  images = nlohmann::json::array();
+  // The light map is texture and image 0, so that a split city's parts, merged in order, number their
+  // images as the one-file city does (the merge keeps each distinct image once, at its first use).
+  const size_t first = o.lightMap ? 1 : 0;
+  if (o.lightMap) {
+    textures.push_back({{"source", 0}, {"sampler", 0}});
+    images.push_back({{"uri", lightMapUri}});
+  }
   for (size_t i = 0; i < nt; ++i) {
     const TexSpec& t = scene.textures[i];
     nlohmann::json m = {{"name", fmt::format("m{}", textureIds[i])},
                         {"pbrMetallicRoughness",
-                         {{"baseColorTexture", {{"index", i}}}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}}};
+                         {{"baseColorTexture", {{"index", first + i}}}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}}};
     if (t.kind == TexKind::Fence || t.kind == TexKind::Tree)
       m["alphaMode"] = "MASK", m["alphaCutoff"] = 0.5, m["doubleSided"] = true;
     if (t.kind == TexKind::Glass) m["alphaMode"] = "BLEND", m["doubleSided"] = true;
+    if (o.lightMap) m["occlusionTexture"] = {{"index", 0}, {"texCoord", 0}};
     materials.push_back(m);
-    textures.push_back({{"source", i}, {"sampler", 0}});
+    textures.push_back({{"source", first + i}, {"sampler", 0}});
     images.push_back({{"uri", imageUris[i]}});
   }
   for (const ColourMaterial& c : scene.colours)  // untextured: a base colour factor only
@@ -261,6 +290,7 @@ glm::dmat4 localTransform(const Node& n) {
 
 void writeSplitScene(const Scene& scene, const CityOptions& o, CitySummary& s) {
   const std::vector<std::string> names = writeTextures(scene, o, s);
+  if (o.lightMap) writeLightMap(o, s);
   const std::string partsDir = o.outDir + "/parts";
   std::error_code ec;
   fs::create_directories(partsDir, ec);
@@ -282,7 +312,7 @@ void writeSplitScene(const Scene& scene, const CityOptions& o, CitySummary& s) {
     for (auto it = n.children.rbegin(); it != n.children.rend(); ++it) stack.push_back({*it, world});
     if (n.primitives.empty()) continue;
     const Part p = partOf(scene, n, names);
-    writeGltf(p.scene, p.imageUris, p.textureIds, partsDir, o, s);
+    writeGltf(p.scene, p.imageUris, p.textureIds, partsDir, o, s, std::string("../") + kLightMapName);
     s.files.push_back("parts/" + n.name + ".bin");
     s.files.push_back("parts/" + n.name + ".gltf");
     nlohmann::json m = nlohmann::json::array();
@@ -306,9 +336,10 @@ void writeSplitScene(const Scene& scene, const CityOptions& o, CitySummary& s) {
 
 void writeScene(const Scene& scene, const CityOptions& o, CitySummary& s) {
   const std::vector<std::string> names = writeTextures(scene, o, s);
+  if (o.lightMap) writeLightMap(o, s);
   std::vector<uint32_t> ids(names.size());
   for (size_t i = 0; i < ids.size(); ++i) ids[i] = uint32_t(i);
-  s.gltf = writeGltf(scene, names, ids, o.outDir, o, s);
+  s.gltf = writeGltf(scene, names, ids, o.outDir, o, s, kLightMapName);
   s.files.push_back(scene.name + ".bin");
   s.files.push_back(scene.name + ".gltf");
 }

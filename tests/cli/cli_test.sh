@@ -255,6 +255,16 @@ PY
     "$tessera" mta info tree.mta > info.json 2> /dev/null
     [ "$(json_field info.json "['triangles']")" -ge 1 ] || fail "info reports no triangles"
     [ "$(json_field info.json "['blocks']['atlas']['count']")" -ge 1 ] || fail "info reports no atlas blocks"
+    [ "$(json_field info.json "['layers']")" = 1 ] || fail "a city without a light map has $(json_field info.json "['layers']") layers"
+    # --light-map: the glTF occlusionTexture of every facade, the tree's layer 1, in the one file and the parts.
+    "$tessera" city --preset berlin --buildings 6 --seed 3 --light-map -o lit --quiet > lit.json
+    "$tessera" city --preset berlin --buildings 6 --seed 3 --light-map --split-per-building -o litsplit --quiet > /dev/null
+    [ -s lit/lightmap.png ] && [ -s litsplit/lightmap.png ] || fail "no lightmap.png written"
+    "$tessera" mta build lit/berlin.gltf -o lit.mta --d-min 50 --quiet > /dev/null
+    "$tessera" mta build litsplit/berlin.json -o litsplit.mta --d-min 50 --quiet > /dev/null
+    "$tessera" mta info lit.mta > litinfo.json 2> /dev/null
+    [ "$(json_field litinfo.json "['layers']")" = 2 ] || fail "the light map is not layer 1: $(cat litinfo.json)"
+    cmp -s lit.mta litsplit.mta || fail "the split city's light-mapped tree differs from the one-file city's"
     ;;
   scene_manifest_and_directory_work_in_every_model_command)
     # A berlin city written whole and split per building (docs/model-import.md "Scenes of several files"):

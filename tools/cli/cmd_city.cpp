@@ -24,7 +24,7 @@ struct CityArgs {
   std::string outDir;
   bool quiet = false;
   bool loadBack = false;
-  bool split = false;
+  bool split = false, lightMap = false;
 };
 
 void runCity(const CityArgs& a) {
@@ -39,6 +39,7 @@ void runCity(const CityArgs& a) {
   o.outDir = a.outDir;
   o.progress = !a.quiet;
   o.splitPerBuilding = a.split;
+  o.lightMap = a.lightMap;
   const model::CitySummary s = model::generateCity(o);
   nlohmann::json j = s.toJson();
   j["preset"] = a.preset;
@@ -87,6 +88,9 @@ void addCityCommand(CLI::App& app) {
   city->add_flag("--split-per-building", a->split,
                  "Write one glTF per building (and one for the ground) under DIR/parts/ and the scene manifest "
                  "DIR/<preset>.json placing them, instead of DIR/<preset>.gltf (docs/model-import.md)");
+  city->add_flag("--light-map", a->lightMap,
+                 "Also a light-map layer: DIR/lightmap.png (grey, darker towards the bottom of each texture repeat) as every "
+                 "textured material's glTF occlusionTexture on texCoord 0, the atlas tree's layer 1 (thesis 5.1.3)");
   city->callback([a] { runCity(*a); });
 }
 
