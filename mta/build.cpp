@@ -99,7 +99,7 @@ struct ImageCache {
   const MipImage& get(uint32_t i) const { return *items.at(i).first; }
 };
 
-// Original images: packed into blocks of about `target` bytes as row ranges.
+// Original images: each in blocks of its own of at most about `target` bytes, as row ranges.
 struct OriginalPacker {
   PagingFileWriter& w;
   MtaMeta& meta;
@@ -121,7 +121,7 @@ struct OriginalPacker {
     r.firstPiece = uint32_t(meta.pieces.size());
     for (uint32_t row = 0; row < r.height;) {
       // The layout is the size estimate's own (output_size.h), so the estimate stays exact.
-      const OriginalBlockLayout::Piece p = layout.next(r.height - row, rowBytes);
+      const OriginalBlockLayout::Piece p = layout.next(r.height - row, rowBytes, row == 0);
       if (p.closedBlockBytes) flush();
       if (cur.empty()) firstImage = image;
       const uint32_t rows = p.rows;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <limits>
@@ -23,7 +24,7 @@ namespace {
 using testing::TempFile;
 
 // An 8 x 8 grid of textured quads with a second layer and RGBA quads: two trees (RGB, RGBA), inner nodes
-// with 2 and 4 children, leaves, images split over several original-texture blocks.
+// with 2 and 4 children, leaves, every image in an original-texture block of its own.
 struct Good {
   TempFile file{"good.mta"};
   Good() {
@@ -84,7 +85,51 @@ TEST(PagingFileValidation, TheUneditedFileIsAcceptedAndTheHelperKeepsItsBytes) {
   EXPECT_EQ(testing::readBytes(same.path), testing::readBytes(good().file.path));
   ASSERT_EQ(good().meta().trees.size(), 2u);
   ASSERT_EQ(good().meta().layerCount, 2u);
-  EXPECT_GT(good().meta().pieces.size(), good().meta().images.size());  // some image spans two blocks
+  // Every image is smaller than a block (4 · 64² bytes), so each stored image is one piece in one block.
+  uint64_t stored = 0, originalBlocks = 0;
+  for (const ImageRecord& r : good().meta().images) stored += r.pieceCount != 0;
+  for (const BlockInfo& b : good().meta().blocks) originalBlocks += b.kind == BlockKind::Original;
+  EXPECT_EQ(good().meta().pieces.size(), stored);
+  EXPECT_EQ(originalBlocks, stored);
+}
+
+TEST(PagingFileValidation, AVersion1FileIsRefusedWithAMessageToRebuildIt) {
+  TempFile old("old.mta");
+  std::vector<uint8_t> bytes = testing::readBytes(good().file.path);
+  const uint32_t one = 1;
+  std::memcpy(bytes.data() + 8, &one, 4);
+  testing::fixHeader(bytes);
+  testing::writeBytes(old.path, bytes);
+  const std::string m = errorOf(old.path);
+  EXPECT_EQ(m.rfind(old.path + ": format version 1: its original images share blocks", 0), 0u) << m;
+  EXPECT_NE(m.find("rebuild it with `tessera mta build`"), std::string::npos) << m;
+}
+
+TEST(PagingFileValidation, TwoImagesInOneOriginalBlockAreRefused) {
+  // The version 1 layout: the first two images packed into the first original block. Blocks 0 and 1
+  // hold one image each and follow each other without padding, so merging them into block 0 (and
+  // renumbering the later blocks) gives a directory that is valid in every other respect.
+  const MtaMeta& g = good().meta();
+  ASSERT_EQ(g.blocks[0].kind, BlockKind::Original);
+  ASSERT_EQ(g.blocks[1].kind, BlockKind::Original);
+  ASSERT_EQ(g.pieces[0].block, 0u);
+  ASSERT_EQ(g.pieces[1].block, 1u);
+  ASSERT_NE(g.pieces[0].image, g.pieces[1].image);
+  ASSERT_EQ(g.blocks[0].offset + g.blocks[0].size, g.blocks[1].offset) << "block 0 should need no padding";
+  expectRefused(
+      [](MtaMeta& m) {
+        const uint64_t first = m.blocks[0].size;
+        m.blocks[0].size += m.blocks[1].size;
+        m.blocks.erase(m.blocks.begin() + 1);
+        m.pieces[1].block = 0;
+        m.pieces[1].offset = first;
+        for (size_t j = 2; j < m.pieces.size(); ++j) --m.pieces[j].block;
+        for (Tree& t : m.trees)
+          for (uint32_t& b : t.atlasBlocks) b -= b > 1 ? 1 : 0;
+      },
+      "pieces[1].block",
+      "0, which already holds pieces[0] (image " + std::to_string(g.pieces[0].image) +
+          "): every original-texture block holds one piece, so each image starts blocks of its own (format version 2)");
 }
 
 TEST(PagingFileValidation, ImageRowsLongerThanABlockAreStoredOneRowPerBlockAndAccepted) {
@@ -511,17 +556,19 @@ TEST(PagingFile, AnImageWithFiveChannelsIsRefused) {
 }
 
 TEST(PagingFile, AnImageChannelCountThatDisagreesWithItsStoredBytesIsRefused) {
-  // Image 1 (32 x 32) is stored with 3 channels, 3072 bytes, first in its block: with 4 channels its
-  // piece would end at 4096, where the next piece does not start.
+  // Image 1 (32 x 32) is stored with 3 channels, 3072 bytes, alone in block 0: with 4 channels its piece
+  // would fill 4096 bytes, more than the block holds.
   ASSERT_EQ(good().meta().images[1].channels, 3u);
   ASSERT_EQ(good().meta().images[1].firstPiece, 0u);
-  ASSERT_EQ(good().meta().pieces[1].offset, 3072u);
-  expectRefused([](MtaMeta& m) { m.images[1].channels = 4; }, "pieces[1].offset", "3072, expected 4096");
+  ASSERT_EQ(good().meta().pieces[0].block, 0u);
+  expectRefused([](MtaMeta& m) { m.images[1].channels = 4; }, "blocks[0].size",
+                "3072, but its piece (pieces[0]: 32 rows of 128 bytes) fills 4096 bytes");
 }
 
 TEST(PagingFile, AnImageWidthThatDisagreesWithItsStoredBytesIsRefused) {
   // Wider rows than stored: a read of the image would copy past its piece's bytes.
-  expectRefused([](MtaMeta& m) { m.images[1].width = 64; }, "pieces[1].offset", "3072, expected 6144");
+  expectRefused([](MtaMeta& m) { m.images[1].width = 64; }, "blocks[0].size",
+                "3072, but its piece (pieces[0]: 32 rows of 192 bytes) fills 6144 bytes");
 }
 
 TEST(PagingFile, APieceRunningPastItsImageRowsIsRefused) {
@@ -534,7 +581,7 @@ TEST(PagingFile, APieceRunningPastItsImageRowsIsRefused) {
 TEST(PagingFile, APieceOutsideItsBlockIsRefused) {
   const ImageRecord& r = good().meta().images[1];
   expectRefused([&](MtaMeta& m) { m.pieces[r.firstPiece].offset += 1u << 20; },
-                "pieces[" + std::to_string(r.firstPiece) + "].offset", "expected");
+                "pieces[" + std::to_string(r.firstPiece) + "].offset", "expected 0 (a block holds one piece)");
 }
 
 TEST(PagingFile, APieceInAnAtlasBlockIsRefused) {
