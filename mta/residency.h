@@ -11,7 +11,13 @@
 // - a request queue (at most maxQueue blocks, in priority order) refilled from the ideal set with the
 //   most important blocks neither in memory nor queued, and dropped entries that left the ideal set;
 // - loading within a per-frame budget, removing the block of lowest priority when a load would exceed
-//   the capacity (never a block of the ideal set: the ideal set fits by construction).
+//   the capacity (never a block of the ideal set: the ideal set fits by construction);
+// - Unused blocks keep the distance and level of the last frame that gave them another category (the
+//   traversal does not reach them, so it cannot measure them): among resident Unused blocks the farthest
+//   and deepest go first, so a node's descendants and its originals are removed before the node itself,
+//   as §4.6 wants ("if the atlas of a node N is in memory, the atlases for all nodes on the path to N
+//   should also be in memory"). Blocks never given a category keep the default (infinite distance,
+//   deepest level).
 // Budgets: Bytes / Blocks are deterministic (the same path gives the same residency on every run and
 // machine; tests and goldens use them); Time reserves a wall-clock slot per frame for blocks read by a
 // background loader thread (interactive use; not reproducible).
@@ -38,7 +44,8 @@ enum class Usage : uint8_t { Needed = 0, Culled = 1, ParentNeeded = 2, Unused = 
 const char* usageName(Usage u);
 
 // Smaller is more important: usage, then distance, then level, then block index (a total order, so
-// every tie is broken the same way on every machine).
+// every tie is broken the same way on every machine). The default is what a block that no frame has
+// reached yet gets.
 struct BlockPriority {
   Usage usage = Usage::Unused;
   double distance = std::numeric_limits<double>::infinity();
@@ -69,6 +76,7 @@ struct ResidencyFrameStats {
   uint64_t neededMissing = 0;                         // Needed blocks not in memory after loading
   uint64_t queueLength = 0;
   std::vector<uint32_t> loadOrder;                    // blocks completed this frame, in order
+  std::vector<uint32_t> evictionOrder;                // blocks removed this frame, in order
 };
 
 class Residency {
@@ -79,8 +87,11 @@ class Residency {
   Residency(const Residency&) = delete;
   Residency& operator=(const Residency&) = delete;
 
-  // priority: one entry per paging-file block (from the usage traversal).
+  // priority: one entry per paging-file block (from the usage traversal). An Unused entry's distance and
+  // level are ignored: the block keeps those of the last frame that gave it another category.
   const ResidencyFrameStats& update(const std::vector<BlockPriority>& priority);
+  // The priority the last update() used for `block` (Unused blocks with their last distance and level).
+  const BlockPriority& priority(uint32_t block) const { return priority_[block]; }
 
   bool resident(uint32_t block) const { return state_[block].resident; }
   // The payload of a resident block (empty span otherwise).
@@ -102,16 +113,17 @@ class Residency {
     uint64_t generation = 0;
     std::vector<uint8_t> bytes;
   };
-  bool makeRoom(uint64_t bytes, const std::vector<BlockPriority>& priority);
+  bool makeRoom(uint64_t bytes);
   void install(uint32_t block, std::vector<uint8_t> bytes);
   void checkCapacity() const;
-  void serveDeterministic(const std::vector<BlockPriority>& priority);
-  void serveTimed(const std::vector<BlockPriority>& priority);
+  void serveDeterministic();
+  void serveTimed();
   void loaderMain();
 
   const PagingFile& file_;
   ResidencyOptions options_;
   std::vector<BlockState> state_;
+  std::vector<BlockPriority> priority_;  // this frame's, Unused blocks with their last distance and level
   std::vector<uint32_t> queue_;
   uint64_t bytesResident_ = 0, blocksResident_ = 0, peak_ = 0;
   ResidencyFrameStats stats_;

@@ -1,4 +1,5 @@
-// The memory manager's policy of §4.6 on a small tree: a frame loads only what it draws.
+// The memory manager's policy of §4.6 on a small tree: the order in which resident blocks are removed, and
+// that a frame loads only what it draws.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,11 +17,113 @@ namespace {
 using testing::gridScene;
 using testing::TempFile;
 
+// A 12 x 12 wall of textured unit quads with small atlases and a small d_min: a tree several levels deep.
+struct Fixture {
+  TempFile file{"policy.mta"};
+  std::unique_ptr<PagingFile> tree;
+  Fixture() {
+    BuildParams p;
+    p.atlasSize = 64;
+    p.border = 2;
+    p.dMin = 1.5;
+    p.screenWidth = 256;
+    p.threads = 2;
+    buildMta(gridScene(12, 12, 32, 2.0f), p, file.path);
+    tree = std::make_unique<PagingFile>(file.path);
+  }
+};
+
+Fixture& fixture() {
+  static Fixture f;
+  return f;
+}
+
 LoadBudget wholeBlocks(uint64_t perFrame) {
   LoadBudget b;
   b.kind = LoadBudget::Kind::Blocks;
   b.perFrame = perFrame;
   return b;
+}
+
+uint32_t atlasBlock(const MtaMeta& m, uint32_t node, uint32_t layer = 0) {
+  return m.trees[0].atlasBlocks[size_t(node) * m.layerCount + layer];
+}
+
+// The original-texture blocks of a leaf's images.
+std::vector<uint32_t> originalBlocks(const MtaMeta& m, uint32_t leaf) {
+  std::set<uint32_t> s;
+  const Node& n = m.trees[0].nodes[leaf];
+  for (uint32_t k = 0; k < n.imageCount; ++k) {
+    const ImageRecord& r = m.images[m.trees[0].leafImages[n.imageFirst + k]];
+    for (uint32_t p = 0; p < r.pieceCount; ++p) s.insert(m.pieces[r.firstPiece + p].block);
+  }
+  return {s.begin(), s.end()};
+}
+
+TEST(PagingPolicy, UnusedBlocksKeepTheirLastDistanceAndLevelSoDescendantsAreEvictedBeforeAncestors) {
+  const MtaMeta& m = fixture().tree->meta();
+  const std::vector<Node>& nodes = m.trees[0].nodes;
+  // A leaf at least three levels down and the path to it below the (pinned) root: path[k] at level k + 1.
+  uint32_t leaf = 0;
+  while (leaf < nodes.size() && !(nodes[leaf].leaf() && nodes[leaf].level >= 3)) ++leaf;
+  ASSERT_LT(leaf, nodes.size()) << "the fixture should have a leaf at level 3 or deeper";
+  std::vector<uint32_t> path;
+  for (int32_t n = int32_t(leaf); n > 0; n = nodes[uint32_t(n)].parent) path.insert(path.begin(), uint32_t(n));
+  ASSERT_EQ(path.size(), nodes[leaf].level);
+  const std::vector<uint32_t> originals = originalBlocks(m, leaf);
+  ASSERT_FALSE(originals.empty());
+
+  // Frame 1 (hand-made priorities, as the usage traversal gives them for an eye near the leaf): the path
+  // is Needed with distances growing downwards, the leaf at its parent's distance (so the level decides
+  // between them), the leaf's originals Parent needed at the leaf's distance one level below it.
+  std::vector<BlockPriority> frame1(m.blocks.size());
+  frame1[atlasBlock(m, 0)] = {Usage::Needed, 0.0, 0};
+  uint64_t frame1Bytes = 0;
+  for (size_t k = 0; k < path.size(); ++k) {
+    const double d = double(std::min(k + 1, path.size() - 1));
+    frame1[atlasBlock(m, path[k])] = {Usage::Needed, d, nodes[path[k]].level};
+    frame1Bytes += m.blocks[atlasBlock(m, path[k])].size;
+  }
+  const double leafDistance = double(path.size() - 1);
+  for (uint32_t b : originals) frame1[b] = {Usage::ParentNeeded, leafDistance, nodes[leaf].level + 1}, frame1Bytes += m.blocks[b].size;
+
+  // Frame 2: the camera has left; other leaves' atlases fill the whole capacity, so every block of frame 1
+  // is removed, lowest priority first: the originals (deepest level), the leaf (its parent's distance, one
+  // level deeper), then the path upwards. Without the kept distances all of them would tie at an infinite
+  // distance and go by block index, which removes ancestors (written after their children) first.
+  const uint64_t atlas = m.blocks[atlasBlock(m, 0)].size;
+  const uint64_t slots = (frame1Bytes + atlas - 1) / atlas;
+  std::vector<BlockPriority> frame2(m.blocks.size());
+  frame2[atlasBlock(m, 0)] = {Usage::Needed, 50.0, 0};
+  uint64_t others = 0;
+  for (uint32_t i = 1; i < nodes.size() && others < slots; ++i) {
+    if (!nodes[i].leaf() || i == leaf) continue;
+    frame2[atlasBlock(m, i)] = {Usage::Needed, 50.0 + i, nodes[i].level};
+    ++others;
+  }
+  ASSERT_EQ(others, slots);
+
+  ResidencyOptions ro;
+  ro.capacityBytes = atlas + slots * atlas;
+  ro.budget = wholeBlocks(UINT64_MAX);
+  ro.maxQueue = UINT32_MAX;
+  Residency res(*fixture().tree, ro);
+  EXPECT_EQ(res.update(frame1).neededMissing, 0u);
+  for (uint32_t b : originals) ASSERT_TRUE(res.resident(b));
+  const ResidencyFrameStats& s = res.update(frame2);
+
+  std::vector<uint32_t> expected(originals.rbegin(), originals.rend());  // equal priority: higher index first
+  for (size_t k = path.size(); k-- > 0;) expected.push_back(atlasBlock(m, path[k]));
+  EXPECT_EQ(s.evictionOrder, expected);
+  EXPECT_EQ(s.neededMissing, 0u);
+  // The kept priorities themselves.
+  const BlockPriority& parent = res.priority(atlasBlock(m, path[path.size() - 2]));
+  EXPECT_EQ(parent.usage, Usage::Unused);
+  EXPECT_EQ(parent.distance, leafDistance);
+  EXPECT_EQ(parent.level, nodes[leaf].level - 1);
+  EXPECT_EQ(res.priority(atlasBlock(m, leaf)).level, nodes[leaf].level);
+  EXPECT_EQ(res.priority(originals[0]).level, nodes[leaf].level + 1);
+  EXPECT_EQ(res.priority(originals[0]).distance, leafDistance);
 }
 
 RendererOptions unlimited(uint32_t width) {
