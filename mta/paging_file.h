@@ -31,6 +31,9 @@ constexpr uint32_t kFormatVersion = 2;
 constexpr uint32_t kHeaderSize = 128;
 // Limits of the format (docs/mta-format.md, "Validation").
 constexpr uint32_t kMaxLayers = 16;
+// A set of layers, bit l for layer l (kMaxLayers <= 32).
+using LayerMask = uint32_t;
+static_assert(kMaxLayers <= 32);
 constexpr uint32_t kMaxNodeLevel = 60;     // the builder stops splitting there (tree_build.cpp)
 constexpr uint32_t kMaxImageSize = 65536;  // width and height of a stored image, as mta::Scene allows
 // Triangles over all trees: draws address vertices with 32-bit indices (3 per triangle).

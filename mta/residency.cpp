@@ -58,13 +58,14 @@ Residency::Residency(const PagingFile& file, ResidencyOptions options) : file_(f
   state_.resize(m.blocks.size());
   priority_.resize(m.blocks.size());
   if (options_.maxQueue == 0) throw Error("memory manager: the request queue length must be at least 1");
+  auto drawn = [&](uint32_t layer) { return layer < 32 && (options_.drawnLayers >> layer & 1); };
   uint64_t rootBytes = 0;
   for (const Tree& t : m.trees)
     for (uint32_t l = 0; l < m.layerCount; ++l) {
       // Guaranteed by the paging file's validator; checked because it is indexed with.
       if (t.atlasBlocks.size() < m.layerCount || t.atlasBlocks[l] >= m.blocks.size())
         throw Error("memory manager: internal error: a root atlas block is out of range");
-      rootBytes += m.blocks[t.atlasBlocks[l]].size;
+      if (drawn(l)) rootBytes += m.blocks[t.atlasBlocks[l]].size;
     }
   if (rootBytes > options_.capacityBytes)
     throw Error("memory manager: capacity " + std::to_string(options_.capacityBytes) + " bytes cannot hold the root atlases (" +
@@ -72,7 +73,7 @@ Residency::Residency(const PagingFile& file, ResidencyOptions options) : file_(f
   for (const Tree& t : m.trees)
     for (uint32_t l = 0; l < m.layerCount; ++l) {
       const uint32_t b = t.atlasBlocks[l];
-      if (state_[b].resident) continue;
+      if (!drawn(l) || state_[b].resident) continue;
       install(b, file_.readBlock(b));
       bytesResident_ += m.blocks[b].size;
       state_[b].pinned = true;

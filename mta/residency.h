@@ -2,8 +2,8 @@
 //
 // Implements, as §4.6 describes:
 // - blocks (node atlases and original-texture blocks) with a capacity k in bytes that the summed size of
-//   the blocks in memory (plus blocks being loaded) never exceeds; the root atlases are loaded at
-//   construction and never removed;
+//   the blocks in memory (plus blocks being loaded) never exceeds; the root atlases of the layers drawn
+//   are loaded at construction and never removed;
 // - per frame, from the block priorities of the usage traversal (traversal.h: usage category Needed /
 //   Culled / Parent needed / Unused, then distance, then tree level): the ideal block set, i.e. the
 //   blocks of the first three categories in priority order, cut to the longest prefix whose size fits
@@ -66,6 +66,9 @@ struct ResidencyOptions {
   uint64_t capacityBytes = uint64_t(100) << 20;  // k; the thesis used 100 MB
   LoadBudget budget;
   uint32_t maxQueue = 32;
+  // The layers the renderer draws (TreeRenderer passes frame_recorder.h's kRecordedLayers): only their
+  // root atlases are pinned. The usage traversal requests nothing of the other layers (traversal.h).
+  LayerMask drawnLayers = 1;
 };
 
 // What happened in one update().

@@ -658,7 +658,7 @@ TEST(BlockIndex, ChildIndicesThatDoNotIncreaseAreAnErrorNotAnEndlessWalk) {
   MtaMeta m = good().meta();
   m.trees[1].nodes[2].children[0] = 1;
   try {
-    buildBlockIndex(m);
+    buildBlockIndex(m, LayerMask(1));
     ADD_FAILURE() << "no error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("tree 1 node 2: child index 1 out of range"), std::string::npos) << e.what();

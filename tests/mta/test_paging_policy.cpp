@@ -1,5 +1,5 @@
-// The memory manager's policy of §4.6 on a small tree: the order in which resident blocks are removed, and
-// that a frame loads only what it draws.
+// The memory manager's policy of §4.6 on a small tree: the order in which resident blocks are removed,
+// which layers are requested, and that a frame loads only what it draws.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -126,6 +126,23 @@ TEST(PagingPolicy, UnusedBlocksKeepTheirLastDistanceAndLevelSoDescendantsAreEvic
   EXPECT_EQ(res.priority(originals[0]).distance, leafDistance);
 }
 
+// Cameras facing a wall in the plane z = 0 centred on (cx, cy): from `far` away to `close`, then along it.
+std::vector<Camera> wallPath(const MtaMeta& m, double cx, double cy, double far, double close, double pan) {
+  std::vector<Camera> cams;
+  for (int i = 0; i < 24; ++i) {
+    const double t = i / 23.0;
+    Camera c;
+    const double x = cx + (t < 0.5 ? 0.0 : pan * (t - 0.5) * 2.0), z = t < 0.5 ? far + (close - far) * t * 2.0 : close;
+    c.eye = {x, cy, z};
+    c.target = {x, cy, 0.0};
+    c.tanHalfFovX = m.params.tanHalfFov;
+    c.nearPlane = 0.01;
+    c.farPlane = 200.0;
+    cams.push_back(c);
+  }
+  return cams;
+}
+
 RendererOptions unlimited(uint32_t width) {
   RendererOptions o;
   o.width = width;
@@ -135,6 +152,60 @@ RendererOptions unlimited(uint32_t width) {
   o.residency.budget = wholeBlocks(UINT64_MAX);
   o.residency.maxQueue = UINT32_MAX;
   return o;
+}
+
+TEST(PagingPolicy, NoBlockOfALayerThatNothingDrawsIsEverRequestedOrLoaded) {
+  // Two layers; the recorder draws layer 0 only.
+  ASSERT_EQ(kRecordedLayers, LayerMask(1)) << "this test assumes the recorder draws layer 0 alone";
+  TempFile file("layers.mta");
+  BuildParams p;
+  p.atlasSize = 64;
+  p.border = 2;
+  p.dMin = 1.5;
+  p.screenWidth = 256;
+  p.threads = 2;
+  buildMta(gridScene(8, 8, 32, 2.0f, true), p, file.path);
+  const PagingFile f(file.path);
+  const MtaMeta& m = f.meta();
+  ASSERT_EQ(m.layerCount, 2u);
+  // Images that only layer 1 uses: the per-triangle textures of the second layer.
+  std::set<uint32_t> layer0Images, layer1Only;
+  for (const Tree& t : m.trees)
+    for (uint32_t k = 0; k < t.geometry.triangleCount(); ++k)
+      if (t.geometry.layers[0].texture[k] >= 0) layer0Images.insert(m.textures[t.geometry.layers[0].texture[k]].image);
+  for (const Tree& t : m.trees)
+    for (uint32_t k = 0; k < t.geometry.triangleCount(); ++k)
+      if (t.geometry.layers[1].texture[k] >= 0 && !layer0Images.count(m.textures[t.geometry.layers[1].texture[k]].image))
+        layer1Only.insert(m.textures[t.geometry.layers[1].texture[k]].image);
+  ASSERT_FALSE(layer1Only.empty());
+  auto layer1Block = [&](uint32_t b) {
+    const BlockInfo& bi = m.blocks[b];
+    return bi.kind == BlockKind::Atlas ? bi.layer != 0 : layer1Only.count(bi.node) != 0;
+  };
+
+  TreeRenderer r(f, unlimited(256));
+  const std::vector<Camera> cams = wallPath(m, 4.0, 4.0, 20.0, 0.4, 3.0);
+  uint64_t loaded = 0, originalsDrawn = 0;
+  for (const Camera& c : cams) {
+    const FrameResult fr = r.renderFrame(c);
+    for (uint32_t b : fr.residency.loadOrder) EXPECT_FALSE(layer1Block(b)) << "frame " << fr.frame << " loaded block " << b;
+    loaded += fr.residency.loadOrder.size();
+    originalsDrawn += fr.plan.originalLeaves;
+    EXPECT_EQ(fr.residency.neededMissing, 0u);
+  }
+  EXPECT_GT(loaded, 0u);
+  EXPECT_GT(originalsDrawn, 0u) << "the path should come close enough to draw original textures";
+  for (uint32_t b = 0; b < m.blocks.size(); ++b) EXPECT_FALSE(layer1Block(b) && r.residency()->resident(b)) << "block " << b;
+
+  // The same views with layer 1 drawn too request its blocks: the set follows the layers drawn.
+  const BlockIndex both = buildBlockIndex(m, LayerMask(3));
+  ViewParams v = r.view(cams[20]);
+  const std::vector<BlockPriority> pr = usagePriorities(m, both, makeViewContext(m, v));
+  bool atlas1 = false, original1 = false;
+  for (uint32_t b = 0; b < m.blocks.size(); ++b)
+    if (pr[b].usage != Usage::Unused && layer1Block(b)) (m.blocks[b].kind == BlockKind::Atlas ? atlas1 : original1) = true;
+  EXPECT_TRUE(atlas1);
+  EXPECT_TRUE(original1);
 }
 
 TEST(PagingPolicy, AViewThatNeedsOneFacadeImageLoadsOnlyThatImagesBytes) {
