@@ -183,8 +183,10 @@ const ResidencyFrameStats& Residency::update(const std::vector<BlockPriority>& g
     if (!s.ideal && s.progress > 0) {
       bytesResident_ -= m.blocks[b].size;
       s.progress = 0;
+      ++stats_.loadsCancelled;
     }
   }
+  if (options_.budget.kind == LoadBudget::Kind::Time) cancelTimed();
   std::erase_if(queue_, [&](uint32_t b) {
     const bool drop = !state_[b].ideal || state_[b].resident;
     if (drop) state_[b].queued = false;
@@ -238,6 +240,34 @@ void Residency::serveDeterministic() {
   }
 }
 
+// Blocks handed to the loader that left the ideal set: taken back if the loader has not started them (their
+// reservation released now), marked to be dropped when their read ends otherwise (their bytes are in memory
+// until then, so the reservation stays). A marked block that is ideal again is kept after all.
+void Residency::cancelTimed() {
+  const MtaMeta& m = file_.meta();
+  std::lock_guard<std::mutex> lk(mu_);
+  std::erase_if(toLoad_, [&](uint32_t b) {
+    BlockState& s = state_[b];
+    if (s.ideal) return false;
+    s.inFlight = false;
+    bytesResident_ -= m.blocks[b].size;
+    ++stats_.loadsCancelled;
+    return true;
+  });
+  for (uint32_t b = 0; b < state_.size(); ++b) {
+    BlockState& s = state_[b];
+    if (!s.inFlight) continue;
+    if (!s.ideal && !s.cancelled) ++stats_.loadsCancelled;
+    s.cancelled = !s.ideal;
+  }
+}
+
+void Residency::waitForLoader() {
+  if (!loader_.joinable()) return;
+  std::unique_lock<std::mutex> lk(mu_);
+  cv_.wait(lk, [&] { return (toLoad_.empty() && !reading_) || !loaderError_.empty(); });
+}
+
 void Residency::serveTimed() {
   const MtaMeta& m = file_.meta();
   constexpr size_t kInFlight = 2;  // enough to keep one read going while another is installed
@@ -267,8 +297,14 @@ void Residency::serveTimed() {
       done.swap(loaded_);
     }
     for (auto& [b, bytes] : done) {
-      install(b, std::move(bytes));
       --inFlight;
+      if (state_[b].cancelled) {  // left the ideal set while it was read
+        BlockState& s = state_[b];
+        s.cancelled = s.inFlight = false;
+        bytesResident_ -= m.blocks[b].size;
+        continue;
+      }
+      install(b, std::move(bytes));
       ++stats_.blocksLoaded;
       stats_.bytesLoaded += m.blocks[b].size;
       stats_.loadOrder.push_back(b);
@@ -286,14 +322,17 @@ void Residency::loaderMain() {
       if (stop_) return;
       b = toLoad_.front();
       toLoad_.pop_front();
+      reading_ = true;
     }
     try {
-      std::vector<uint8_t> bytes = file_.readBlock(b);
+      std::vector<uint8_t> bytes = options_.blockReader ? options_.blockReader(b) : file_.readBlock(b);
       std::lock_guard<std::mutex> lk(mu_);
       loaded_.emplace_back(b, std::move(bytes));
+      reading_ = false;
     } catch (const std::exception& e) {
       std::lock_guard<std::mutex> lk(mu_);
       loaderError_ = e.what();
+      reading_ = false;
     }
     cv_.notify_all();
   }

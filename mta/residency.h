@@ -9,7 +9,11 @@
 //   blocks of the first three categories in priority order, cut to the longest prefix whose size fits
 //   the capacity;
 // - a request queue (at most maxQueue blocks, in priority order) refilled from the ideal set with the
-//   most important blocks neither in memory nor queued, and dropped entries that left the ideal set;
+//   most important blocks neither in memory nor queued, and dropped entries that left the ideal set (§4.6:
+//   "a block is removed from the queue if ... it is no longer in the ideal block set"), also while they
+//   are being loaded: a partly read block (Bytes budget) is abandoned, a block handed to the background
+//   loader (Time budget) is taken back if its read has not started and dropped when the read ends if it
+//   has;
 // - loading within a per-frame budget, removing the block of lowest priority when a load would exceed
 //   the capacity (never a block of the ideal set: the ideal set fits by construction);
 // - Unused blocks keep the distance and level of the last frame that gave them another category (the
@@ -29,6 +33,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <limits>
 #include <mutex>
 #include <span>
@@ -69,11 +74,15 @@ struct ResidencyOptions {
   // The layers the renderer draws (TreeRenderer passes frame_recorder.h's kRecordedLayers): only their
   // root atlases are pinned. The usage traversal requests nothing of the other layers (traversal.h).
   LayerMask drawnLayers = 1;
+  // Time budget: what the background loader reads a block with (empty: PagingFile::readBlock). Tests
+  // substitute a reader they can hold, to make a block leave the ideal set while it is being read.
+  std::function<std::vector<uint8_t>(uint32_t block)> blockReader;
 };
 
 // What happened in one update().
 struct ResidencyFrameStats {
   uint64_t blocksLoaded = 0, bytesLoaded = 0, blocksEvicted = 0;
+  uint64_t loadsCancelled = 0;                        // loads under way that left the ideal set (see above)
   uint64_t idealBlocks = 0, idealBytes = 0;          // after the cut to capacity
   uint64_t idealBlocksCut = 0;                        // blocks of the first three categories left out
   uint64_t neededMissing = 0;                         // Needed blocks not in memory after loading
@@ -95,6 +104,9 @@ class Residency {
   const ResidencyFrameStats& update(const std::vector<BlockPriority>& priority);
   // The priority the last update() used for `block` (Unused blocks with their last distance and level).
   const BlockPriority& priority(uint32_t block) const { return priority_[block]; }
+  // Time budget: waits until the background loader has read every block handed to it (returns at once for
+  // the other budgets); the next update() installs or drops them. For tests, which must not time a read.
+  void waitForLoader();
 
   bool resident(uint32_t block) const { return state_[block].resident; }
   // The payload of a resident block (empty span otherwise).
@@ -112,6 +124,7 @@ class Residency {
  private:
   struct BlockState {
     bool resident = false, pinned = false, queued = false, inFlight = false, ideal = false;
+    bool cancelled = false;  // in flight (Time budget) but no longer ideal: dropped when its read ends
     uint64_t progress = 0;  // Bytes budget: payload bytes read so far
     uint64_t generation = 0;
     std::vector<uint8_t> bytes;
@@ -121,6 +134,7 @@ class Residency {
   void checkCapacity() const;
   void serveDeterministic();
   void serveTimed();
+  void cancelTimed();
   void loaderMain();
 
   const PagingFile& file_;
@@ -138,6 +152,7 @@ class Residency {
   std::deque<uint32_t> toLoad_;
   std::vector<std::pair<uint32_t, std::vector<uint8_t>>> loaded_;
   std::string loaderError_;
+  bool reading_ = false;  // the loader is reading a block it took from toLoad_
   bool stop_ = false;
 };
 

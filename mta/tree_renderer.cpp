@@ -115,6 +115,7 @@ nlohmann::json toJson(const FrameResult& r, RenderMode mode) {
     j["blocks_loaded"] = r.residency.blocksLoaded;
     j["bytes_loaded"] = r.residency.bytesLoaded;
     j["blocks_evicted"] = r.residency.blocksEvicted;
+    j["loads_cancelled"] = r.residency.loadsCancelled;
     j["ideal_blocks"] = r.residency.idealBlocks;
     j["ideal_bytes"] = r.residency.idealBytes;
     j["ideal_blocks_cut"] = r.residency.idealBlocksCut;

@@ -1,5 +1,5 @@
 // The memory manager's policy of §4.6 on a small tree: the order in which resident blocks are removed,
-// which layers are requested, and that a frame loads only what it draws.
+// which layers are requested, cancelled background loads, and that a frame loads only what it draws.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -243,6 +243,78 @@ TEST(PagingPolicy, AViewThatNeedsOneFacadeImageLoadsOnlyThatImagesBytes) {
     }
   // Over-fetch 0: every original byte read is a texel of the one image drawn.
   EXPECT_EQ(originalBytes, uint64_t(m.images[1].width) * m.images[1].height * m.images[1].channels);
+}
+
+// A reader the test holds: the loader thread waits inside it until the test opens the gate.
+struct Gate {
+  std::mutex mu;
+  std::condition_variable cv;
+  bool open = false;
+  std::set<uint32_t> entered;
+};
+
+TEST(PagingPolicy, ATimedLoadThatLeavesTheIdealSetIsDroppedInsteadOfInstalled) {
+  const PagingFile& f = *fixture().tree;
+  const MtaMeta& m = f.meta();
+  const std::vector<Node>& nodes = m.trees[0].nodes;
+  ASSERT_GE(nodes.size(), 3u);
+  const uint32_t x = atlasBlock(m, 1), y = atlasBlock(m, 2), root = atlasBlock(m, 0);
+  auto gate = std::make_shared<Gate>();
+  ResidencyOptions ro;
+  ro.capacityBytes = uint64_t(1) << 30;
+  ro.budget.kind = LoadBudget::Kind::Time;
+  ro.budget.slotMs = 1.0;
+  ro.blockReader = [gate, &f](uint32_t b) {
+    std::unique_lock<std::mutex> lk(gate->mu);
+    gate->entered.insert(b);
+    gate->cv.notify_all();
+    gate->cv.wait(lk, [&] { return gate->open; });
+    return f.readBlock(b);
+  };
+  Residency res(f, ro);
+  const uint64_t rootBytes = m.blocks[root].size;
+  ASSERT_EQ(res.bytesResident(), rootBytes);
+
+  // Frame 1: x and y are Needed; both go to the loader (two in flight), which starts reading x and waits.
+  std::vector<BlockPriority> want(m.blocks.size());
+  want[root] = {Usage::Needed, 0.0, 0};
+  want[x] = {Usage::Needed, 1.0, 1};
+  want[y] = {Usage::Needed, 2.0, 1};
+  EXPECT_EQ(res.update(want).blocksLoaded, 0u);
+  {
+    std::unique_lock<std::mutex> lk(gate->mu);
+    gate->cv.wait(lk, [&] { return gate->entered.count(x) != 0; });
+    EXPECT_EQ(gate->entered.count(y), 0u) << "the loader reads one block at a time";
+  }
+  EXPECT_EQ(res.bytesResident(), rootBytes + m.blocks[x].size + m.blocks[y].size);  // both reserved
+
+  // Frame 2: the camera turned away. y had not been started: taken back at once. x is being read: its
+  // bytes stay reserved until the read ends, then it is dropped.
+  std::vector<BlockPriority> away(m.blocks.size());
+  away[root] = {Usage::Needed, 0.0, 0};
+  EXPECT_EQ(res.update(away).loadsCancelled, 2u);
+  EXPECT_EQ(res.bytesResident(), rootBytes + m.blocks[x].size);
+  {
+    std::lock_guard<std::mutex> lk(gate->mu);
+    gate->open = true;
+  }
+  gate->cv.notify_all();
+  res.waitForLoader();
+  const ResidencyFrameStats& s3 = res.update(away);
+  EXPECT_EQ(s3.blocksLoaded, 0u);
+  EXPECT_FALSE(res.resident(x));
+  EXPECT_FALSE(res.resident(y));
+  EXPECT_EQ(res.bytesResident(), rootBytes);
+  {
+    std::lock_guard<std::mutex> lk(gate->mu);
+    EXPECT_EQ(gate->entered.count(y), 0u) << "a block taken back must not be read";
+  }
+
+  // Wanted again, x is loaded normally.
+  res.update(want);
+  res.waitForLoader();
+  res.update(want);
+  EXPECT_TRUE(res.resident(x));
 }
 
 }  // namespace
