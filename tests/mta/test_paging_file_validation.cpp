@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <limits>
@@ -91,45 +90,6 @@ TEST(PagingFileValidation, TheUneditedFileIsAcceptedAndTheHelperKeepsItsBytes) {
   for (const BlockInfo& b : good().meta().blocks) originalBlocks += b.kind == BlockKind::Original;
   EXPECT_EQ(good().meta().pieces.size(), stored);
   EXPECT_EQ(originalBlocks, stored);
-}
-
-TEST(PagingFileValidation, AVersion1FileIsRefusedWithAMessageToRebuildIt) {
-  TempFile old("old.mta");
-  std::vector<uint8_t> bytes = testing::readBytes(good().file.path);
-  const uint32_t one = 1;
-  std::memcpy(bytes.data() + 8, &one, 4);
-  testing::fixHeader(bytes);
-  testing::writeBytes(old.path, bytes);
-  const std::string m = errorOf(old.path);
-  EXPECT_EQ(m.rfind(old.path + ": format version 1: its original images share blocks", 0), 0u) << m;
-  EXPECT_NE(m.find("rebuild it with `tessera mta build`"), std::string::npos) << m;
-}
-
-TEST(PagingFileValidation, TwoImagesInOneOriginalBlockAreRefused) {
-  // The version 1 layout: the first two images packed into the first original block. Blocks 0 and 1
-  // hold one image each and follow each other without padding, so merging them into block 0 (and
-  // renumbering the later blocks) gives a directory that is valid in every other respect.
-  const MtaMeta& g = good().meta();
-  ASSERT_EQ(g.blocks[0].kind, BlockKind::Original);
-  ASSERT_EQ(g.blocks[1].kind, BlockKind::Original);
-  ASSERT_EQ(g.pieces[0].block, 0u);
-  ASSERT_EQ(g.pieces[1].block, 1u);
-  ASSERT_NE(g.pieces[0].image, g.pieces[1].image);
-  ASSERT_EQ(g.blocks[0].offset + g.blocks[0].size, g.blocks[1].offset) << "block 0 should need no padding";
-  expectRefused(
-      [](MtaMeta& m) {
-        const uint64_t first = m.blocks[0].size;
-        m.blocks[0].size += m.blocks[1].size;
-        m.blocks.erase(m.blocks.begin() + 1);
-        m.pieces[1].block = 0;
-        m.pieces[1].offset = first;
-        for (size_t j = 2; j < m.pieces.size(); ++j) --m.pieces[j].block;
-        for (Tree& t : m.trees)
-          for (uint32_t& b : t.atlasBlocks) b -= b > 1 ? 1 : 0;
-      },
-      "pieces[1].block",
-      "0, which already holds pieces[0] (image " + std::to_string(g.pieces[0].image) +
-          "): every original-texture block holds one piece, so each image starts blocks of its own (format version 2)");
 }
 
 TEST(PagingFileValidation, ImageRowsLongerThanABlockAreStoredOneRowPerBlockAndAccepted) {
