@@ -80,7 +80,8 @@ void traverse(const PagingFile& file) {
     return;  // non-finite or inverted bounds: the CLI stops here too
   }
   const RuntimeGeometry geometry = buildRuntimeGeometry(meta);
-  const BlockIndex index = buildBlockIndex(meta);
+  // Every layer of the file, so that the per-layer image lists of the index are exercised for each.
+  const BlockIndex index = buildBlockIndex(meta, ~LayerMask(0));
   for (Camera c : cameras) {
     c.tanHalfFovX = meta.params.tanHalfFov;
     ViewParams v;

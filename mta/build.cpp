@@ -99,7 +99,7 @@ struct ImageCache {
   const MipImage& get(uint32_t i) const { return *items.at(i).first; }
 };
 
-// Original images: packed into blocks of about `target` bytes as row ranges.
+// Original images: each in blocks of its own of at most about `target` bytes, as row ranges.
 struct OriginalPacker {
   PagingFileWriter& w;
   MtaMeta& meta;
@@ -121,7 +121,7 @@ struct OriginalPacker {
     r.firstPiece = uint32_t(meta.pieces.size());
     for (uint32_t row = 0; row < r.height;) {
       // The layout is the size estimate's own (output_size.h), so the estimate stays exact.
-      const OriginalBlockLayout::Piece p = layout.next(r.height - row, rowBytes);
+      const OriginalBlockLayout::Piece p = layout.next(r.height - row, rowBytes, row == 0);
       if (p.closedBlockBytes) flush();
       if (cur.empty()) firstImage = image;
       const uint32_t rows = p.rows;
@@ -141,9 +141,26 @@ std::pair<double, double> localTexel(const Scene& s, const Tree& tree, const Atl
   const glm::vec2* uvs = &tree.geometry.layers[0].uv[t * 3];
   const auto shift = repeatShift(uvs, s.textures[e.texture].wrapS, s.textures[e.texture].wrapT);
   const double u = float(double(uvs[k].x) - shift.first), v = float(double(uvs[k].y) - shift.second);
-  const double sw = e.source.width(), sh = e.source.height();
-  return {e.x + (sw > 0.0 ? (u - e.source.u0) / sw * e.w : 0.5 * e.w),
-          e.y + (sh > 0.0 ? (v - e.source.v0) / sh * e.h : 0.5 * e.h)};
+  return entryTexel(e, u, v);
+}
+
+// Layer 0: the map from atlas texel centres to the entry's source rectangle (tree.h AtlasEntry), the
+// inverse of entryTexel.
+AffineMap entryMap(const AtlasEntry& e) {
+  AffineMap m;
+  if (!e.rotated) {
+    m.ux = e.source.width() / e.w;
+    m.vy = e.source.height() / e.h;
+    m.u0 = e.source.u0 - e.x * m.ux;
+    m.v0 = e.source.v0 - e.y * m.vy;
+    return m;
+  }
+  // u grows with y from u0 at the area's bottom row; v falls with x from v1 at its left column.
+  m.uy = e.source.width() / e.h;
+  m.vx = -(e.source.height() / e.w);
+  m.u0 = e.source.u0 - e.y * m.uy;
+  m.v0 = e.source.v1 - e.x * m.vx;
+  return m;
 }
 
 // Renders layer `layer` of leaf `node`.
@@ -155,12 +172,7 @@ void renderLeaf(const Scene& s, const Tree& tree, uint32_t node, uint32_t layer,
   for (const AtlasEntry& e : n.entries) {
     if (layer == 0) {
       const SceneTexture& tex = s.textures[e.texture];
-      AffineMap m;
-      m.ux = e.source.width() / e.w;
-      m.vy = e.source.height() / e.h;
-      m.u0 = e.source.u0 - e.x * m.ux;
-      m.v0 = e.source.v0 - e.y * m.vy;
-      fillArea(out.data(), A, C, e.x, e.y, e.w, e.h, m, cache.get(tex.image), tex.wrapS, tex.wrapT);
+      fillArea(out.data(), A, C, e.x, e.y, e.w, e.h, entryMap(e), cache.get(tex.image), tex.wrapS, tex.wrapT);
       continue;
     }
     // §5.1.3: the first triangle of this texture with a layer texture and a non-degenerate atlas triangle.

@@ -29,6 +29,11 @@
 
 namespace tessera::mta {
 
+// The layers recordFrame samples: layer 0, the atlases' layout layer, and the originals' layer-0 textures.
+// The memory manager and the traversals request the blocks of these layers only (TreeRenderer), so a
+// recorder that draws layer 1 too sets bit 1 here and its blocks are requested from then on.
+constexpr LayerMask kRecordedLayers = 1;
+
 struct RecordParams {
   uint32_t width = 1024, height = 768;
   std::array<float, 4> clear{0.62f, 0.74f, 0.88f, 1.0f};  // sky

@@ -14,9 +14,9 @@ uint64_t atlasBlockBytes(uint32_t atlasSize, uint32_t channels) { return uint64_
 
 uint64_t originalBlockTarget(uint32_t atlasSize) { return uint64_t(atlasSize) * atlasSize * 4; }
 
-OriginalBlockLayout::Piece OriginalBlockLayout::next(uint32_t rowsLeft, uint64_t rowBytes) {
+OriginalBlockLayout::Piece OriginalBlockLayout::next(uint32_t rowsLeft, uint64_t rowBytes, bool firstOfImage) {
   Piece p;
-  if (fill_ + rowBytes > target_ && fill_ != 0) p.closedBlockBytes = fill_, fill_ = 0;
+  if ((firstOfImage || fill_ + rowBytes > target_) && fill_ != 0) p.closedBlockBytes = fill_, fill_ = 0;
   // fill_ <= target_ here unless the block is empty (one over-long row), so the subtraction cannot wrap.
   p.rows =
       uint32_t(std::min<uint64_t>(rowsLeft, std::max<uint64_t>(1, (target_ - std::min(fill_, target_)) / rowBytes)));
@@ -48,7 +48,7 @@ OutputEstimate estimateOutput(const BuildPlan& plan) {
         const ImageRecord& r = m.images[img];
         const uint64_t rowBytes = uint64_t(r.width) * r.channels;
         for (uint32_t row = 0; row < r.height;) {
-          const OriginalBlockLayout::Piece p = layout.next(r.height - row, rowBytes);
+          const OriginalBlockLayout::Piece p = layout.next(r.height - row, rowBytes, row == 0);
           if (p.closedBlockBytes) close(p.closedBlockBytes);
           ++e.pieces;
           row += p.rows;

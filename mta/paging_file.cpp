@@ -326,7 +326,12 @@ void PagingFile::load(const ResourceLimits& limits) {
   uint64_t size, metaOffset, metaSize;
   std::memcpy(&version, h + 8, 4), std::memcpy(&hs, h + 12, 4);
   std::memcpy(&size, h + 16, 8), std::memcpy(&metaOffset, h + 24, 8), std::memcpy(&metaSize, h + 32, 8);
-  if (version != kFormatVersion) throw Error(path_ + ": format version " + std::to_string(version) + " (this reader knows 1)");
+  if (version == 1)
+    throw Error(path_ + ": format version 1: its original images share blocks, which this reader no longer accepts "
+                "(version 2 gives every image blocks of its own, docs/mta-format.md); rebuild it with `tessera mta build`");
+  if (version != kFormatVersion)
+    throw Error(path_ + ": format version " + std::to_string(version) + " (this reader knows " +
+                std::to_string(kFormatVersion) + ")");
   if (hs != kHeaderSize) throw Error(path_ + ": header size " + std::to_string(hs) + " (expected 128)");
   if (size != fileSize_)
     throw Error(path_ + ": file is " + std::to_string(fileSize_) + " bytes but the header says " + std::to_string(size) +

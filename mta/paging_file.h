@@ -24,10 +24,16 @@
 
 namespace tessera::mta {
 
-constexpr uint32_t kFormatVersion = 1;
+// 2: every original image starts blocks of its own (version 1 packed several images into one block, so
+// loading one image read its neighbours' texels too). Version 1 files are refused with a message that says
+// to rebuild them.
+constexpr uint32_t kFormatVersion = 2;
 constexpr uint32_t kHeaderSize = 128;
 // Limits of the format (docs/mta-format.md, "Validation").
 constexpr uint32_t kMaxLayers = 16;
+// A set of layers, bit l for layer l (kMaxLayers <= 32).
+using LayerMask = uint32_t;
+static_assert(kMaxLayers <= 32);
 constexpr uint32_t kMaxNodeLevel = 60;     // the builder stops splitting there (tree_build.cpp)
 constexpr uint32_t kMaxImageSize = 65536;  // width and height of a stored image, as mta::Scene allows
 // Triangles over all trees: draws address vertices with 32-bit indices (3 per triangle).
@@ -40,12 +46,12 @@ struct BlockInfo {
   uint64_t offset = 0, size = 0;
   BlockKind kind = BlockKind::Atlas;
   uint8_t tree = 0, layer = 0;  // Atlas: tree and layer
-  uint32_t node = 0;            // Atlas: node; Original: first image in the block
+  uint32_t node = 0;            // Atlas: node; Original: the image in the block
   std::array<uint8_t, 32> sha256{};
 };
 
 // One image is stored once, top row first, `channels` (3 or 4) bytes per texel, as row ranges (pieces)
-// in Original blocks of about atlas size.
+// in Original blocks of at most about atlas size that hold nothing else (one piece per block).
 struct ImageRecord {
   uint32_t width = 0, height = 0, channels = 0;
   uint32_t firstPiece = 0, pieceCount = 0;

@@ -399,9 +399,11 @@ class Validator {
     }
   }
 
-  // Original-texture blocks, in directory order, are exactly tiled by the pieces in array order, and are
-  // ended only when the next row does not fit (build.cpp, OriginalPacker): no block holds more than
-  // 4 · A² bytes unless it is a single row, so an image has no more pieces than its bytes need.
+  // Original-texture blocks, in directory order, each hold exactly one piece, in array order (format
+  // version 2: every image starts blocks of its own, so reading one image never reads another's texels),
+  // and an image's block ends only at the image's end or where its next row would not fit (build.cpp,
+  // OriginalBlockLayout): no block holds more than 4 · A² bytes unless it is a single row, so an image has
+  // no more pieces than its bytes need.
   void pieces() const {
     const uint64_t target = uint64_t(m_.params.atlasSize) * m_.params.atlasSize * 4;
     size_t nextOriginal = 0;  // first original block not yet filled
@@ -409,18 +411,21 @@ class Validator {
       while (nextOriginal < m_.blocks.size() && m_.blocks[nextOriginal].kind != BlockKind::Original) ++nextOriginal;
     };
     advance();
-    int64_t cur = -1;  // the block being filled
-    uint64_t fill = 0;
-    uint32_t pieceCount = 0;
-    auto close = [&](std::optional<uint64_t> nextRowBytes) {
-      const BlockInfo& b = m_.blocks[size_t(cur)];
-      const std::string f = at("blocks", uint64_t(cur));
+    // The block of the previous piece holds that piece alone: its size is the piece's bytes (checked when
+    // the next piece is known to be elsewhere, so that a second piece in it is named as such).
+    auto close = [&](size_t j) {
+      const PieceRecord& p = m_.pieces[j];
+      const uint64_t rowBytes = uint64_t(m_.images[p.image].width) * m_.images[p.image].channels;
+      const uint64_t fill = p.rows * rowBytes;  // rows <= 2^16, rowBytes <= 2^18
+      const BlockInfo& b = m_.blocks[p.block];
       if (b.size != fill)
-        fail(f + ".size", std::to_string(b.size) + ", but its pieces fill " + std::to_string(fill) + " bytes");
-      if (nextRowBytes && fill + *nextRowBytes <= target)
-        fail(f + ".size", std::to_string(b.size) + ": the block ends although the next piece's row (" +
-                              std::to_string(*nextRowBytes) + " bytes) fits in a block's " + std::to_string(target) +
-                              " bytes");
+        fail(at("blocks", p.block) + ".size", std::to_string(b.size) + ", but its piece (" + at("pieces", j) + ": " +
+                                                  std::to_string(p.rows) + " rows of " + std::to_string(rowBytes) +
+                                                  " bytes) fills " + std::to_string(fill) + " bytes");
+      if (fill > target && p.rows != 1)
+        fail(at("pieces", j) + ".rows", std::to_string(p.rows) + ": its block would hold " + std::to_string(fill) +
+                                            " bytes, more than " + std::to_string(target) +
+                                            " (4 · A²), which only a block of a single row may");
     };
     for (size_t j = 0; j < m_.pieces.size(); ++j) {
       const PieceRecord& p = m_.pieces[j];
@@ -430,37 +435,33 @@ class Validator {
       if (p.block >= m_.blocks.size())
         fail(pf + ".block",
              std::to_string(p.block) + " is out of range (" + std::to_string(m_.blocks.size()) + " blocks)");
-      if (int64_t(p.block) != cur) {
-        if (cur >= 0) close(rowBytes);
-        if (p.block != nextOriginal)
-          fail(pf + ".block", std::to_string(p.block) + ", expected " + std::to_string(nextOriginal) +
-                                  " (pieces fill the original-texture blocks in directory order)");
-        cur = int64_t(p.block);
-        ++nextOriginal;
-        advance();
-        fill = 0;
-        pieceCount = 0;
-        if (m_.blocks[size_t(cur)].node != p.image)
-          fail(at("blocks", uint64_t(cur)) + ".node", std::to_string(m_.blocks[size_t(cur)].node) +
-                                                          ", but its first piece (" + pf + ") belongs to image " +
-                                                          std::to_string(p.image));
-      } else if (m_.pieces[j - 1].image == p.image) {
-        fail(pf + ".image", std::to_string(p.image) + " again: an image's rows in one block are one piece");
+      if (j > 0) {
+        const PieceRecord& prev = m_.pieces[j - 1];
+        if (p.block == prev.block)
+          fail(pf + ".block", std::to_string(p.block) + ", which already holds " + at("pieces", j - 1) + " (image " +
+                                  std::to_string(prev.image) +
+                                  "): every original-texture block holds one piece, so each image starts blocks of "
+                                  "its own (format version 2)");
+        close(j - 1);
+        // An image's block ends early only where its next row would not fit.
+        const uint64_t prevSize = m_.blocks[prev.block].size;
+        if (prev.image == p.image && prevSize + rowBytes <= target)
+          fail(at("blocks", prev.block) + ".size",
+               std::to_string(prevSize) + ": the block ends although the next piece's row (" +
+                   std::to_string(rowBytes) + " bytes) fits in a block's " + std::to_string(target) + " bytes");
       }
-      if (p.offset != fill)
-        fail(pf + ".offset", std::to_string(p.offset) + ", expected " + std::to_string(fill) +
-                                 " (pieces follow each other in their block)");
-      fill += p.rows * rowBytes;  // rows <= 2^16, rowBytes <= 2^18
-      ++pieceCount;
-      if (fill > m_.blocks[size_t(cur)].size)
-        fail(pf + ".rows", std::to_string(p.rows) + " rows of " + std::to_string(rowBytes) + " bytes run past the " +
-                               std::to_string(m_.blocks[size_t(cur)].size) + " bytes of block " + std::to_string(cur));
-      if (fill > target && !(pieceCount == 1 && p.rows == 1))
-        fail(pf + ".rows", std::to_string(p.rows) + ": its block would hold " + std::to_string(fill) +
-                               " bytes, more than " + std::to_string(target) +
-                               " (4 · A²), which only a block of a single row may");
+      if (p.block != nextOriginal)
+        fail(pf + ".block", std::to_string(p.block) + ", expected " + std::to_string(nextOriginal) +
+                                " (pieces fill the original-texture blocks in directory order)");
+      ++nextOriginal;
+      advance();
+      const BlockInfo& b = m_.blocks[p.block];
+      if (b.node != p.image)
+        fail(at("blocks", p.block) + ".node",
+             std::to_string(b.node) + ", but its piece (" + pf + ") belongs to image " + std::to_string(p.image));
+      if (p.offset != 0) fail(pf + ".offset", std::to_string(p.offset) + ", expected 0 (a block holds one piece)");
     }
-    if (cur >= 0) close(std::nullopt);
+    if (!m_.pieces.empty()) close(m_.pieces.size() - 1);
     if (nextOriginal < m_.blocks.size())
       fail(at("blocks", nextOriginal), "an original-texture block that holds no pieces");
   }

@@ -56,14 +56,16 @@ std::string LoadBudget::describe() const {
 Residency::Residency(const PagingFile& file, ResidencyOptions options) : file_(file), options_(options) {
   const MtaMeta& m = file.meta();
   state_.resize(m.blocks.size());
+  priority_.resize(m.blocks.size());
   if (options_.maxQueue == 0) throw Error("memory manager: the request queue length must be at least 1");
+  auto drawn = [&](uint32_t layer) { return layer < 32 && (options_.drawnLayers >> layer & 1); };
   uint64_t rootBytes = 0;
   for (const Tree& t : m.trees)
     for (uint32_t l = 0; l < m.layerCount; ++l) {
       // Guaranteed by the paging file's validator; checked because it is indexed with.
       if (t.atlasBlocks.size() < m.layerCount || t.atlasBlocks[l] >= m.blocks.size())
         throw Error("memory manager: internal error: a root atlas block is out of range");
-      rootBytes += m.blocks[t.atlasBlocks[l]].size;
+      if (drawn(l)) rootBytes += m.blocks[t.atlasBlocks[l]].size;
     }
   if (rootBytes > options_.capacityBytes)
     throw Error("memory manager: capacity " + std::to_string(options_.capacityBytes) + " bytes cannot hold the root atlases (" +
@@ -71,7 +73,7 @@ Residency::Residency(const PagingFile& file, ResidencyOptions options) : file_(f
   for (const Tree& t : m.trees)
     for (uint32_t l = 0; l < m.layerCount; ++l) {
       const uint32_t b = t.atlasBlocks[l];
-      if (state_[b].resident) continue;
+      if (!drawn(l) || state_[b].resident) continue;
       install(b, file_.readBlock(b));
       bytesResident_ += m.blocks[b].size;
       state_[b].pinned = true;
@@ -115,14 +117,14 @@ void Residency::checkCapacity() const {
 }
 
 // Removes blocks of lowest priority (never pinned, in-flight or ideal ones) until `bytes` more fit.
-bool Residency::makeRoom(uint64_t bytes, const std::vector<BlockPriority>& priority) {
+bool Residency::makeRoom(uint64_t bytes) {
   const MtaMeta& m = file_.meta();
   while (bytesResident_ + bytes > options_.capacityBytes) {
     int64_t victim = -1;
     for (uint32_t b = 0; b < state_.size(); ++b) {
       const BlockState& s = state_[b];
       if (!s.resident || s.pinned || s.ideal) continue;
-      if (victim < 0 || morePressing(priority[uint32_t(victim)], uint32_t(victim), priority[b], b)) victim = b;
+      if (victim < 0 || morePressing(priority_[uint32_t(victim)], uint32_t(victim), priority_[b], b)) victim = b;
     }
     if (victim < 0) return false;
     BlockState& s = state_[uint32_t(victim)];
@@ -131,15 +133,24 @@ bool Residency::makeRoom(uint64_t bytes, const std::vector<BlockPriority>& prior
     bytesResident_ -= m.blocks[uint32_t(victim)].size;
     --blocksResident_;
     ++stats_.blocksEvicted;
+    stats_.evictionOrder.push_back(uint32_t(victim));
   }
   return true;
 }
 
-const ResidencyFrameStats& Residency::update(const std::vector<BlockPriority>& priority) {
+const ResidencyFrameStats& Residency::update(const std::vector<BlockPriority>& given) {
   const MtaMeta& m = file_.meta();
-  if (priority.size() != state_.size())
-    throw Error("memory manager: " + std::to_string(priority.size()) + " priorities for " + std::to_string(state_.size()) + " blocks");
+  if (given.size() != state_.size())
+    throw Error("memory manager: " + std::to_string(given.size()) + " priorities for " + std::to_string(state_.size()) + " blocks");
   stats_ = ResidencyFrameStats{};
+  // Unused blocks are not reached by the usage traversal, so their distance is not measured: they keep
+  // the distance and level of the last frame that reached them (the priority_ entry), which orders the
+  // removal of resident Unused blocks as §4.6 does (descendants, then their ancestors).
+  for (uint32_t b = 0; b < state_.size(); ++b) {
+    if (given[b].usage != Usage::Unused) priority_[b] = given[b];
+    else priority_[b].usage = Usage::Unused;
+  }
+  const std::vector<BlockPriority>& priority = priority_;
 
   // The ideal block set: Needed, Culled and Parent needed blocks by priority, cut to the capacity. The
   // pinned root atlases occupy their share whatever their category.
@@ -172,8 +183,10 @@ const ResidencyFrameStats& Residency::update(const std::vector<BlockPriority>& p
     if (!s.ideal && s.progress > 0) {
       bytesResident_ -= m.blocks[b].size;
       s.progress = 0;
+      ++stats_.loadsCancelled;
     }
   }
+  if (options_.budget.kind == LoadBudget::Kind::Time) cancelTimed();
   std::erase_if(queue_, [&](uint32_t b) {
     const bool drop = !state_[b].ideal || state_[b].resident;
     if (drop) state_[b].queued = false;
@@ -189,8 +202,8 @@ const ResidencyFrameStats& Residency::update(const std::vector<BlockPriority>& p
   // A priority queue (§4.6): priorities change with the camera, so the order is rebuilt every frame.
   std::sort(queue_.begin(), queue_.end(), [&](uint32_t a, uint32_t b) { return morePressing(priority[a], a, priority[b], b); });
 
-  if (options_.budget.kind == LoadBudget::Kind::Time) serveTimed(priority);
-  else serveDeterministic(priority);
+  if (options_.budget.kind == LoadBudget::Kind::Time) serveTimed();
+  else serveDeterministic();
 
   stats_.queueLength = queue_.size();
   for (uint32_t b = 0; b < state_.size(); ++b)
@@ -200,7 +213,7 @@ const ResidencyFrameStats& Residency::update(const std::vector<BlockPriority>& p
   return stats_;
 }
 
-void Residency::serveDeterministic(const std::vector<BlockPriority>& priority) {
+void Residency::serveDeterministic() {
   const MtaMeta& m = file_.meta();
   uint64_t remaining = options_.budget.perFrame;
   while (!queue_.empty() && remaining > 0) {
@@ -210,7 +223,7 @@ void Residency::serveDeterministic(const std::vector<BlockPriority>& priority) {
     if (s.progress == 0) {
       // Reserve the whole block when its loading starts, so a block half read still counts (§4.6: the
       // summed size of the blocks in memory never exceeds k).
-      if (!makeRoom(size, priority)) throw Error("memory manager: internal error: no block can be removed to load block " + std::to_string(b));
+      if (!makeRoom(size)) throw Error("memory manager: internal error: no block can be removed to load block " + std::to_string(b));
       bytesResident_ += size;
     }
     uint64_t take = size - s.progress;
@@ -227,7 +240,35 @@ void Residency::serveDeterministic(const std::vector<BlockPriority>& priority) {
   }
 }
 
-void Residency::serveTimed(const std::vector<BlockPriority>& priority) {
+// Blocks handed to the loader that left the ideal set: taken back if the loader has not started them (their
+// reservation released now), marked to be dropped when their read ends otherwise (their bytes are in memory
+// until then, so the reservation stays). A marked block that is ideal again is kept after all.
+void Residency::cancelTimed() {
+  const MtaMeta& m = file_.meta();
+  std::lock_guard<std::mutex> lk(mu_);
+  std::erase_if(toLoad_, [&](uint32_t b) {
+    BlockState& s = state_[b];
+    if (s.ideal) return false;
+    s.inFlight = false;
+    bytesResident_ -= m.blocks[b].size;
+    ++stats_.loadsCancelled;
+    return true;
+  });
+  for (uint32_t b = 0; b < state_.size(); ++b) {
+    BlockState& s = state_[b];
+    if (!s.inFlight) continue;
+    if (!s.ideal && !s.cancelled) ++stats_.loadsCancelled;
+    s.cancelled = !s.ideal;
+  }
+}
+
+void Residency::waitForLoader() {
+  if (!loader_.joinable()) return;
+  std::unique_lock<std::mutex> lk(mu_);
+  cv_.wait(lk, [&] { return (toLoad_.empty() && !reading_) || !loaderError_.empty(); });
+}
+
+void Residency::serveTimed() {
   const MtaMeta& m = file_.meta();
   constexpr size_t kInFlight = 2;  // enough to keep one read going while another is installed
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double, std::milli>(options_.budget.slotMs);
@@ -236,7 +277,7 @@ void Residency::serveTimed(const std::vector<BlockPriority>& priority) {
   for (;;) {
     while (inFlight < kInFlight && !queue_.empty()) {
       const uint32_t b = queue_.front();
-      if (!makeRoom(m.blocks[b].size, priority)) break;
+      if (!makeRoom(m.blocks[b].size)) break;
       bytesResident_ += m.blocks[b].size;
       queue_.erase(queue_.begin());
       state_[b].queued = false;
@@ -256,8 +297,14 @@ void Residency::serveTimed(const std::vector<BlockPriority>& priority) {
       done.swap(loaded_);
     }
     for (auto& [b, bytes] : done) {
-      install(b, std::move(bytes));
       --inFlight;
+      if (state_[b].cancelled) {  // left the ideal set while it was read
+        BlockState& s = state_[b];
+        s.cancelled = s.inFlight = false;
+        bytesResident_ -= m.blocks[b].size;
+        continue;
+      }
+      install(b, std::move(bytes));
       ++stats_.blocksLoaded;
       stats_.bytesLoaded += m.blocks[b].size;
       stats_.loadOrder.push_back(b);
@@ -275,14 +322,17 @@ void Residency::loaderMain() {
       if (stop_) return;
       b = toLoad_.front();
       toLoad_.pop_front();
+      reading_ = true;
     }
     try {
-      std::vector<uint8_t> bytes = file_.readBlock(b);
+      std::vector<uint8_t> bytes = options_.blockReader ? options_.blockReader(b) : file_.readBlock(b);
       std::lock_guard<std::mutex> lk(mu_);
       loaded_.emplace_back(b, std::move(bytes));
+      reading_ = false;
     } catch (const std::exception& e) {
       std::lock_guard<std::mutex> lk(mu_);
       loaderError_ = e.what();
+      reading_ = false;
     }
     cv_.notify_all();
   }

@@ -2,16 +2,26 @@
 //
 // Implements, as §4.6 describes:
 // - blocks (node atlases and original-texture blocks) with a capacity k in bytes that the summed size of
-//   the blocks in memory (plus blocks being loaded) never exceeds; the root atlases are loaded at
-//   construction and never removed;
+//   the blocks in memory (plus blocks being loaded) never exceeds; the root atlases of the layers drawn
+//   are loaded at construction and never removed;
 // - per frame, from the block priorities of the usage traversal (traversal.h: usage category Needed /
 //   Culled / Parent needed / Unused, then distance, then tree level): the ideal block set, i.e. the
 //   blocks of the first three categories in priority order, cut to the longest prefix whose size fits
 //   the capacity;
 // - a request queue (at most maxQueue blocks, in priority order) refilled from the ideal set with the
-//   most important blocks neither in memory nor queued, and dropped entries that left the ideal set;
+//   most important blocks neither in memory nor queued, and dropped entries that left the ideal set (§4.6:
+//   "a block is removed from the queue if ... it is no longer in the ideal block set"), also while they
+//   are being loaded: a partly read block (Bytes budget) is abandoned, a block handed to the background
+//   loader (Time budget) is taken back if its read has not started and dropped when the read ends if it
+//   has;
 // - loading within a per-frame budget, removing the block of lowest priority when a load would exceed
-//   the capacity (never a block of the ideal set: the ideal set fits by construction).
+//   the capacity (never a block of the ideal set: the ideal set fits by construction);
+// - Unused blocks keep the distance and level of the last frame that gave them another category (the
+//   traversal does not reach them, so it cannot measure them): among resident Unused blocks the farthest
+//   and deepest go first, so a node's descendants and its originals are removed before the node itself,
+//   as §4.6 wants ("if the atlas of a node N is in memory, the atlases for all nodes on the path to N
+//   should also be in memory"). Blocks never given a category keep the default (infinite distance,
+//   deepest level).
 // Budgets: Bytes / Blocks are deterministic (the same path gives the same residency on every run and
 // machine; tests and goldens use them); Time reserves a wall-clock slot per frame for blocks read by a
 // background loader thread (interactive use; not reproducible).
@@ -23,6 +33,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <limits>
 #include <mutex>
 #include <span>
@@ -38,7 +49,8 @@ enum class Usage : uint8_t { Needed = 0, Culled = 1, ParentNeeded = 2, Unused = 
 const char* usageName(Usage u);
 
 // Smaller is more important: usage, then distance, then level, then block index (a total order, so
-// every tie is broken the same way on every machine).
+// every tie is broken the same way on every machine). The default is what a block that no frame has
+// reached yet gets.
 struct BlockPriority {
   Usage usage = Usage::Unused;
   double distance = std::numeric_limits<double>::infinity();
@@ -59,16 +71,24 @@ struct ResidencyOptions {
   uint64_t capacityBytes = uint64_t(100) << 20;  // k; the thesis used 100 MB
   LoadBudget budget;
   uint32_t maxQueue = 32;
+  // The layers the renderer draws (TreeRenderer passes frame_recorder.h's kRecordedLayers): only their
+  // root atlases are pinned. The usage traversal requests nothing of the other layers (traversal.h).
+  LayerMask drawnLayers = 1;
+  // Time budget: what the background loader reads a block with (empty: PagingFile::readBlock). Tests
+  // substitute a reader they can hold, to make a block leave the ideal set while it is being read.
+  std::function<std::vector<uint8_t>(uint32_t block)> blockReader;
 };
 
 // What happened in one update().
 struct ResidencyFrameStats {
   uint64_t blocksLoaded = 0, bytesLoaded = 0, blocksEvicted = 0;
+  uint64_t loadsCancelled = 0;                        // loads under way that left the ideal set (see above)
   uint64_t idealBlocks = 0, idealBytes = 0;          // after the cut to capacity
   uint64_t idealBlocksCut = 0;                        // blocks of the first three categories left out
   uint64_t neededMissing = 0;                         // Needed blocks not in memory after loading
   uint64_t queueLength = 0;
   std::vector<uint32_t> loadOrder;                    // blocks completed this frame, in order
+  std::vector<uint32_t> evictionOrder;                // blocks removed this frame, in order
 };
 
 class Residency {
@@ -79,8 +99,14 @@ class Residency {
   Residency(const Residency&) = delete;
   Residency& operator=(const Residency&) = delete;
 
-  // priority: one entry per paging-file block (from the usage traversal).
+  // priority: one entry per paging-file block (from the usage traversal). An Unused entry's distance and
+  // level are ignored: the block keeps those of the last frame that gave it another category.
   const ResidencyFrameStats& update(const std::vector<BlockPriority>& priority);
+  // The priority the last update() used for `block` (Unused blocks with their last distance and level).
+  const BlockPriority& priority(uint32_t block) const { return priority_[block]; }
+  // Time budget: waits until the background loader has read every block handed to it (returns at once for
+  // the other budgets); the next update() installs or drops them. For tests, which must not time a read.
+  void waitForLoader();
 
   bool resident(uint32_t block) const { return state_[block].resident; }
   // The payload of a resident block (empty span otherwise).
@@ -98,20 +124,23 @@ class Residency {
  private:
   struct BlockState {
     bool resident = false, pinned = false, queued = false, inFlight = false, ideal = false;
+    bool cancelled = false;  // in flight (Time budget) but no longer ideal: dropped when its read ends
     uint64_t progress = 0;  // Bytes budget: payload bytes read so far
     uint64_t generation = 0;
     std::vector<uint8_t> bytes;
   };
-  bool makeRoom(uint64_t bytes, const std::vector<BlockPriority>& priority);
+  bool makeRoom(uint64_t bytes);
   void install(uint32_t block, std::vector<uint8_t> bytes);
   void checkCapacity() const;
-  void serveDeterministic(const std::vector<BlockPriority>& priority);
-  void serveTimed(const std::vector<BlockPriority>& priority);
+  void serveDeterministic();
+  void serveTimed();
+  void cancelTimed();
   void loaderMain();
 
   const PagingFile& file_;
   ResidencyOptions options_;
   std::vector<BlockState> state_;
+  std::vector<BlockPriority> priority_;  // this frame's, Unused blocks with their last distance and level
   std::vector<uint32_t> queue_;
   uint64_t bytesResident_ = 0, blocksResident_ = 0, peak_ = 0;
   ResidencyFrameStats stats_;
@@ -123,6 +152,7 @@ class Residency {
   std::deque<uint32_t> toLoad_;
   std::vector<std::pair<uint32_t, std::vector<uint8_t>>> loaded_;
   std::string loaderError_;
+  bool reading_ = false;  // the loader is reading a block it took from toLoad_
   bool stop_ = false;
 };
 

@@ -35,8 +35,8 @@ void TextureCache::prune() {
 // blocks read.
 std::span<const uint8_t> TextureCache::blockBytes(uint32_t block) {
   if (!residency_) {
-    // Original blocks pack many images in first-use order, so the images of one leaf mostly share a
-    // block: keep the last few read (each read verifies the block's SHA-256, which dominated `mta runs`).
+    // Keep the last few read (each read verifies the block's SHA-256, which dominated `mta runs` when
+    // format version 1 packed the images of one leaf into shared blocks).
     for (const auto& [b, bytes] : recentBlocks_)
       if (b == block) return bytes;
     if (recentBlocks_.size() == 4) recentBlocks_.erase(recentBlocks_.begin());

@@ -10,8 +10,8 @@
 //     of whose blocks was removed or reloaded since. The caller only asks for chains whose blocks are
 //     resident (otherwise: Error, an internal error of the caller).
 //   - file mode (residency == nullptr; the comparison runs of `mta runs`): blocks are read straight from
-//     the paging file, each read verifying the block's SHA-256. The last 4 blocks read are kept, because
-//     the images of one leaf mostly share a block (original blocks pack images in first-use order).
+//     the paging file, each read verifying the block's SHA-256. The last 4 blocks read are kept (since
+//     format version 2 a block holds one image, so this only saves the reads of a chain made again).
 //     Chains are kept up to fileCacheBytes in all; when a new chain would exceed that, every chain is
 //     dropped (a crude bound is enough: the file is the backing store).
 // A returned reference stays valid until the next prune() or the next atlas()/image() call that drops

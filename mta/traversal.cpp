@@ -30,25 +30,34 @@ DistanceBound parseDistanceBound(const std::string& text, const std::string& wha
   throw Error(what + " '" + text + "': expected node, corner or thesis");
 }
 
-BlockIndex buildBlockIndex(const MtaMeta& meta) {
+BlockIndex buildBlockIndex(const MtaMeta& meta, LayerMask drawnLayers) {
   BlockIndex bi;
-  bi.layerCount = meta.layerCount;
+  const LayerMask fileLayers = meta.layerCount >= 32 ? ~LayerMask(0) : (LayerMask(1) << meta.layerCount) - 1;
+  bi.layers = drawnLayers & fileLayers;
+  if (bi.layers == 0)
+    throw Error("block index: the renderer draws none of the file's " + std::to_string(meta.layerCount) + " layers");
+  std::vector<uint32_t> drawn;
+  for (uint32_t l = 0; l < meta.layerCount; ++l)
+    if (bi.layers >> l & 1) drawn.push_back(l);
+  bi.atlasPerNode = uint32_t(drawn.size());
   for (size_t ti = 0; ti < meta.trees.size(); ++ti) {
     const Tree& t = meta.trees[ti];
     BlockIndex::PerTree pt;
     const size_t n = t.nodes.size();
     // What the index and the walkers below rely on, checked although PagingFile's validator guarantees
-    // it: every block and image index in range, and child indices that only ever increase, so that the
-    // recursive walks stay in the table and end (their depth is the tree's, at most kMaxNodeLevel + 1).
+    // it: every block, texture and image index in range, and child indices that only ever increase, so
+    // that the recursive walks stay in the table and end (their depth is the tree's, at most
+    // kMaxNodeLevel + 1).
     auto broken = [&](size_t node, const std::string& why) {
       throw Error("block index: internal error: tree " + std::to_string(ti) + " node " + std::to_string(node) + ": " +
                   why + " (PagingFile's validator refuses such a file)");
     };
     if (t.atlasBlocks.size() != n * meta.layerCount) broken(0, "the atlas block table does not match the node count");
+    if (t.geometry.layers.size() != meta.layerCount) broken(0, "the geometry does not have every layer");
     pt.atlasFirst.resize(n);
     pt.originalFirst.assign(n, 0);
     pt.originalCount.assign(n, 0);
-    std::vector<uint32_t> blocks;
+    std::vector<uint32_t> images, blocks;
     for (size_t i = 0; i < n; ++i) {
       const Node& node = t.nodes[i];
       for (int32_t c : node.children)
@@ -56,15 +65,27 @@ BlockIndex buildBlockIndex(const MtaMeta& meta) {
           broken(i, "child index " + std::to_string(c) + " out of range");
       if (node.level > kMaxNodeLevel) broken(i, "deeper than the format allows");
       pt.atlasFirst[i] = uint32_t(pt.atlas.size());
-      for (uint32_t l = 0; l < meta.layerCount; ++l) {
+      for (uint32_t l : drawn) {
         pt.atlas.push_back(t.atlasBlocks[i * meta.layerCount + l]);
         if (pt.atlas.back() >= meta.blocks.size()) broken(i, "atlas block out of range");
       }
       if (!node.leaf()) continue;
-      if (uint64_t(node.imageFirst) + node.imageCount > t.leafImages.size()) broken(i, "image list out of range");
+      // The images the leaf's drawn layers use (the validator makes the leaf's image list the union over
+      // every layer; a layer nothing draws must not pull its images in).
+      images.clear();
+      for (uint32_t l : drawn) {
+        const std::vector<int32_t>& tex = t.geometry.layers[l].texture;
+        if (uint64_t(node.firstTriangle) + node.triangleCount > tex.size()) broken(i, "triangle range out of range");
+        for (uint32_t k = node.firstTriangle; k < node.firstTriangle + node.triangleCount; ++k) {
+          if (tex[k] < 0) continue;
+          if (uint64_t(tex[k]) >= meta.textures.size()) broken(i, "texture " + std::to_string(tex[k]) + " out of range");
+          images.push_back(meta.textures[uint32_t(tex[k])].image);
+        }
+      }
+      std::sort(images.begin(), images.end());
+      images.erase(std::unique(images.begin(), images.end()), images.end());
       blocks.clear();
-      for (uint32_t k = 0; k < node.imageCount; ++k) {
-        const uint32_t image = t.leafImages[node.imageFirst + k];
+      for (uint32_t image : images) {
         if (image >= meta.images.size()) broken(i, "image " + std::to_string(image) + " out of range");
         const ImageRecord& img = meta.images[image];
         if (uint64_t(img.firstPiece) + img.pieceCount > meta.pieces.size()) broken(i, "image pieces out of range");
@@ -157,7 +178,7 @@ void mark(std::vector<BlockPriority>& pr, uint32_t block, Usage u, double d, uin
 void markAtlas(const Walker& w, std::vector<BlockPriority>& pr, size_t tree, uint32_t node, Usage u, double d) {
   const auto& pt = w.index.trees[tree];
   const uint32_t level = w.meta.trees[tree].nodes[node].level;
-  for (uint32_t l = 0; l < w.index.layerCount; ++l) mark(pr, pt.atlas[pt.atlasFirst[node] + l], u, d, level);
+  for (uint32_t l = 0; l < w.index.atlasPerNode; ++l) mark(pr, pt.atlas[pt.atlasFirst[node] + l], u, d, level);
 }
 
 void markOriginals(const Walker& w, std::vector<BlockPriority>& pr, size_t tree, uint32_t node, Usage u, double d) {
@@ -205,7 +226,7 @@ struct Planner {
 
   bool atlasResident(size_t tree, uint32_t n) const {
     const auto& pt = w.index.trees[tree];
-    for (uint32_t l = 0; l < w.index.layerCount; ++l)
+    for (uint32_t l = 0; l < w.index.atlasPerNode; ++l)
       if (!resident(pt.atlas[pt.atlasFirst[n] + l])) return false;
     return true;
   }

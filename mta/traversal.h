@@ -58,22 +58,27 @@ struct ViewParams {
   DistanceBound bound = DistanceBound::PerNode;
 };
 
-// Which blocks each node needs: its atlas blocks (one per layer) and, for leaves, the blocks holding
-// pieces of its original images.
+// Which blocks each node needs for the layers the renderer draws: its atlas blocks (one per drawn layer)
+// and, for leaves, the blocks holding pieces of the original images that its triangles' textures of a
+// drawn layer use. Blocks of other layers are in no node's lists, so the usage traversal never requests
+// them (they stay Unused) and the rendering traversal never waits for them.
 struct BlockIndex {
   struct PerTree {
-    std::vector<uint32_t> atlasFirst;                 // per node: into atlas (layerCount each)
+    std::vector<uint32_t> atlasFirst;                 // per node: into atlas (atlasPerNode each)
     std::vector<uint32_t> atlas;
     std::vector<uint32_t> originalFirst, originalCount;  // per node (leaves), into original
     std::vector<uint32_t> original;
   };
   std::vector<PerTree> trees;
-  uint32_t layerCount = 1;
+  uint32_t atlasPerNode = 1;  // the drawn layers that the file has
+  LayerMask layers = 1;       // which ones
 };
+// drawnLayers: bit l set when the renderer samples layer l (frame_recorder.h kRecordedLayers: layer 0
+// today); bits of layers the file lacks are ignored. Error if it names none of the file's layers.
 // Precondition: `meta` passed PagingFile's validation. Also checks what the walkers of this file index
-// with (child indices that only increase, block and image indices in range): a meta that breaks it is an
-// Error ("internal error"), never an access out of bounds or an endless walk.
-BlockIndex buildBlockIndex(const MtaMeta& meta);
+// with (child indices that only increase, block, texture and image indices in range): a meta that breaks
+// it is an Error ("internal error"), never an access out of bounds or an endless walk.
+BlockIndex buildBlockIndex(const MtaMeta& meta, LayerMask drawnLayers);
 
 // Per-frame derived view quantities shared by both traversals.
 struct ViewContext {

@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "mta/scene.h"
@@ -24,8 +25,16 @@ namespace tessera::mta {
 struct AtlasEntry {
   int32_t texture = -1;        // Scene texture
   TexRect source;              // texture-space rectangle mapped onto the area (A_tex scaled for the border)
-  uint32_t x = 0, y = 0, w = 0, h = 0;  // texel rectangle in the leaf atlas
+  uint32_t x = 0, y = 0, w = 0, h = 0;  // texel rectangle in the leaf atlas, as placed
+  // Turned by 90° by the packing (packing.h): the source's u runs along the atlas' +y over h texels and
+  // its v along the atlas' −x over w texels (source.v1 at the area's left edge); otherwise u along +x over
+  // w texels and v along +y over h texels.
+  bool rotated = false;
 };
+// Leaf-local atlas texel position (x, y) of texture coordinate (u, v) (shifted into the entry's repeat,
+// tree_build.cpp) through the entry's map, rotation included. A source of zero width or height maps to the
+// area's middle along that axis.
+std::pair<double, double> entryTexel(const AtlasEntry& e, double u, double v);
 
 struct Node {
   std::array<float, 6> bounds{};  // min x, y, z, max x, y, z of the node's triangles

@@ -20,6 +20,15 @@ uint32_t Tree::depth() const {
 
 double toRoot(double local, uint32_t cell, uint32_t level) { return (double(cell) + local) / double(uint64_t(1) << level); }
 
+std::pair<double, double> entryTexel(const AtlasEntry& e, double u, double v) {
+  const double sw = e.source.width(), sh = e.source.height();
+  if (!e.rotated)
+    return {e.x + (sw > 0.0 ? (u - e.source.u0) / sw * e.w : 0.5 * e.w),
+            e.y + (sh > 0.0 ? (v - e.source.v0) / sh * e.h : 0.5 * e.h)};
+  return {e.x + (sh > 0.0 ? (e.source.v1 - v) / sh * e.w : 0.5 * e.w),
+          e.y + (sw > 0.0 ? (u - e.source.u0) / sw * e.h : 0.5 * e.h)};
+}
+
 double toLocal(double root, uint32_t level) {
   const double x = root * double(uint64_t(1) << level);
   return x - std::floor(x);
@@ -63,7 +72,11 @@ bool layoutAtlas(const Scene& s, const Geometry& g, std::span<const uint32_t> tr
   }
   const PackResult pr = packAtlas(rects, p.atlasSize);
   if (!pr.ok) return false;
-  for (size_t i = 0; i < entries.size(); ++i) entries[i].x = pr.placements[i].x, entries[i].y = pr.placements[i].y;
+  for (size_t i = 0; i < entries.size(); ++i) {
+    AtlasEntry& e = entries[i];
+    e.x = pr.placements[i].x, e.y = pr.placements[i].y;
+    if (pr.placements[i].rotated) e.rotated = true, std::swap(e.w, e.h);
+  }
   coverage = pr.coverage();
   return true;
 }
@@ -179,9 +192,9 @@ struct Flattener {
         if (e) {
           const glm::vec2& uv = in.layers[0].uv[t * 3 + k];
           const double u = float(double(uv.x) - shift.first), v = float(double(uv.y) - shift.second);
-          const double sw = e->source.width(), sh = e->source.height();
-          s = (e->x + (sw > 0.0 ? (u - e->source.u0) / sw * e->w : 0.5 * e->w)) / A;
-          tt = (e->y + (sh > 0.0 ? (v - e->source.v0) / sh * e->h : 0.5 * e->h)) / A;
+          const auto [px, py] = entryTexel(*e, u, v);
+          s = px / A;
+          tt = py / A;
         }
         tree.atlasUV.push_back(glm::vec2{float(toRoot(s, n.cellX, n.level)), float(toRoot(tt, n.cellY, n.level))});
       }

@@ -14,9 +14,14 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 }  // namespace
 
 TreeRenderer::TreeRenderer(const PagingFile& file, RendererOptions options)
-    : file_(file), options_(options), geometry_(buildRuntimeGeometry(file.meta())), index_(buildBlockIndex(file.meta())) {
+    : file_(file),
+      options_(options),
+      geometry_(buildRuntimeGeometry(file.meta())),
+      index_(buildBlockIndex(file.meta(), kRecordedLayers)) {
   if (options_.width == 0 || options_.height == 0 || options_.width > 16384 || options_.height > 16384)
     throw Error("renderer: frame size " + std::to_string(options_.width) + "x" + std::to_string(options_.height) + " is outside 1..16384");
+  // Requests and pins follow what the recorder draws, never an option: blocks of other layers are dead weight.
+  options_.residency.drawnLayers = kRecordedLayers;
   if (options_.mode == RenderMode::AtlasTree) residency_ = std::make_unique<Residency>(file_, options_.residency);
   textures_ = std::make_unique<TextureCache>(file_, residency_.get());
   backend_ = std::make_unique<CpuBackend>(RenderOptions{options_.threads, false});
@@ -111,6 +116,7 @@ nlohmann::json toJson(const FrameResult& r, RenderMode mode) {
     j["blocks_loaded"] = r.residency.blocksLoaded;
     j["bytes_loaded"] = r.residency.bytesLoaded;
     j["blocks_evicted"] = r.residency.blocksEvicted;
+    j["loads_cancelled"] = r.residency.loadsCancelled;
     j["ideal_blocks"] = r.residency.idealBlocks;
     j["ideal_bytes"] = r.residency.idealBytes;
     j["ideal_blocks_cut"] = r.residency.idealBlocksCut;

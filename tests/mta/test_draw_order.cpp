@@ -87,7 +87,7 @@ struct SharedTree {
     buildMta(sharedTextureScene(decals), p, file.path);
     tree = std::make_unique<PagingFile>(file.path);
     geometry = buildRuntimeGeometry(tree->meta());
-    index = buildBlockIndex(tree->meta());
+    index = buildBlockIndex(tree->meta(), kRecordedLayers);
   }
 };
 

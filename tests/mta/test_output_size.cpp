@@ -106,18 +106,30 @@ TEST(OutputSize, MetadataBytesIsTheSizeOfTheEncodedMetadata) {
 
 TEST(OutputSize, ARowLongerThanTheBlockTargetGetsABlockOfItsOwn) {
   OriginalBlockLayout l(100);
-  auto p = l.next(3, 40);  // two rows fit (80 of 100)
+  auto p = l.next(3, 40, true);  // two rows fit (80 of 100)
   EXPECT_EQ(p.rows, 2u);
   EXPECT_EQ(p.closedBlockBytes, 0u);
-  p = l.next(1, 40);  // the third does not: the block of 80 bytes is closed first
+  p = l.next(1, 40, false);  // the third does not: the block of 80 bytes is closed first
   EXPECT_EQ(p.closedBlockBytes, 80u);
   EXPECT_EQ(p.offset, 0u);
-  p = l.next(2, 150);  // longer than the target: closes the 40 bytes, then one row alone
+  p = l.next(2, 150, true);  // longer than the target: closes the 40 bytes, then one row alone
   EXPECT_EQ(p.closedBlockBytes, 40u);
   EXPECT_EQ(p.rows, 1u);
-  p = l.next(1, 150);
+  p = l.next(1, 150, false);
   EXPECT_EQ(p.closedBlockBytes, 150u);
   EXPECT_EQ(l.fill(), 150u);
+}
+
+TEST(OutputSize, EveryImageStartsABlockOfItsOwnEvenWhenThePreviousBlockHasRoom) {
+  OriginalBlockLayout l(100);
+  auto p = l.next(2, 10, true);  // a small image: 20 bytes, 80 left in its block
+  EXPECT_EQ(p.rows, 2u);
+  EXPECT_EQ(p.closedBlockBytes, 0u);
+  p = l.next(3, 10, true);  // the next image would fit, but starts a block of its own
+  EXPECT_EQ(p.closedBlockBytes, 20u);
+  EXPECT_EQ(p.offset, 0u);
+  EXPECT_EQ(p.rows, 3u);
+  EXPECT_EQ(l.fill(), 30u);
 }
 
 TEST(DMinGrid, ValuesHaveTwoSignificantDigitsAndRiseByAtMostTenPercent) {

@@ -23,7 +23,7 @@ namespace {
 using testing::TempFile;
 
 // An 8 x 8 grid of textured quads with a second layer and RGBA quads: two trees (RGB, RGBA), inner nodes
-// with 2 and 4 children, leaves, images split over several original-texture blocks.
+// with 2 and 4 children, leaves, every image in an original-texture block of its own.
 struct Good {
   TempFile file{"good.mta"};
   Good() {
@@ -84,7 +84,12 @@ TEST(PagingFileValidation, TheUneditedFileIsAcceptedAndTheHelperKeepsItsBytes) {
   EXPECT_EQ(testing::readBytes(same.path), testing::readBytes(good().file.path));
   ASSERT_EQ(good().meta().trees.size(), 2u);
   ASSERT_EQ(good().meta().layerCount, 2u);
-  EXPECT_GT(good().meta().pieces.size(), good().meta().images.size());  // some image spans two blocks
+  // Every image is smaller than a block (4 · 64² bytes), so each stored image is one piece in one block.
+  uint64_t stored = 0, originalBlocks = 0;
+  for (const ImageRecord& r : good().meta().images) stored += r.pieceCount != 0;
+  for (const BlockInfo& b : good().meta().blocks) originalBlocks += b.kind == BlockKind::Original;
+  EXPECT_EQ(good().meta().pieces.size(), stored);
+  EXPECT_EQ(originalBlocks, stored);
 }
 
 TEST(PagingFileValidation, ImageRowsLongerThanABlockAreStoredOneRowPerBlockAndAccepted) {
@@ -511,17 +516,19 @@ TEST(PagingFile, AnImageWithFiveChannelsIsRefused) {
 }
 
 TEST(PagingFile, AnImageChannelCountThatDisagreesWithItsStoredBytesIsRefused) {
-  // Image 1 (32 x 32) is stored with 3 channels, 3072 bytes, first in its block: with 4 channels its
-  // piece would end at 4096, where the next piece does not start.
+  // Image 1 (32 x 32) is stored with 3 channels, 3072 bytes, alone in block 0: with 4 channels its piece
+  // would fill 4096 bytes, more than the block holds.
   ASSERT_EQ(good().meta().images[1].channels, 3u);
   ASSERT_EQ(good().meta().images[1].firstPiece, 0u);
-  ASSERT_EQ(good().meta().pieces[1].offset, 3072u);
-  expectRefused([](MtaMeta& m) { m.images[1].channels = 4; }, "pieces[1].offset", "3072, expected 4096");
+  ASSERT_EQ(good().meta().pieces[0].block, 0u);
+  expectRefused([](MtaMeta& m) { m.images[1].channels = 4; }, "blocks[0].size",
+                "3072, but its piece (pieces[0]: 32 rows of 128 bytes) fills 4096 bytes");
 }
 
 TEST(PagingFile, AnImageWidthThatDisagreesWithItsStoredBytesIsRefused) {
   // Wider rows than stored: a read of the image would copy past its piece's bytes.
-  expectRefused([](MtaMeta& m) { m.images[1].width = 64; }, "pieces[1].offset", "3072, expected 6144");
+  expectRefused([](MtaMeta& m) { m.images[1].width = 64; }, "blocks[0].size",
+                "3072, but its piece (pieces[0]: 32 rows of 192 bytes) fills 6144 bytes");
 }
 
 TEST(PagingFile, APieceRunningPastItsImageRowsIsRefused) {
@@ -534,7 +541,7 @@ TEST(PagingFile, APieceRunningPastItsImageRowsIsRefused) {
 TEST(PagingFile, APieceOutsideItsBlockIsRefused) {
   const ImageRecord& r = good().meta().images[1];
   expectRefused([&](MtaMeta& m) { m.pieces[r.firstPiece].offset += 1u << 20; },
-                "pieces[" + std::to_string(r.firstPiece) + "].offset", "expected");
+                "pieces[" + std::to_string(r.firstPiece) + "].offset", "expected 0 (a block holds one piece)");
 }
 
 TEST(PagingFile, APieceInAnAtlasBlockIsRefused) {
@@ -611,7 +618,7 @@ TEST(BlockIndex, ChildIndicesThatDoNotIncreaseAreAnErrorNotAnEndlessWalk) {
   MtaMeta m = good().meta();
   m.trees[1].nodes[2].children[0] = 1;
   try {
-    buildBlockIndex(m);
+    buildBlockIndex(m, LayerMask(1));
     ADD_FAILURE() << "no error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("tree 1 node 2: child index 1 out of range"), std::string::npos) << e.what();

@@ -112,7 +112,7 @@ TEST(Residency, BlocksAreLoadedInPriorityOrderWithinEachFrame) {
   ro.budget = b;
   ro.maxQueue = 6;
   Residency res(f, ro);
-  const BlockIndex index = buildBlockIndex(f.meta());
+  const BlockIndex index = buildBlockIndex(f.meta(), kRecordedLayers);
   ViewParams v;
   v.width = 128;
   v.height = 96;

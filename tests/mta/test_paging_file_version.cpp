@@ -1,0 +1,105 @@
+// Paging file format version 2 (docs/mta-format.md, "Versions"): every original image starts blocks of its
+// own. A version 1 file is refused with a message that says to rebuild it, and a file whose metadata
+// packs two images into one block is refused naming the piece, though its checksums are valid.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "base/error.h"
+#include "mta/build.h"
+#include "mta/paging_file.h"
+#include "mta_file_edit.h"
+#include "mta_test_scene.h"
+
+namespace tessera::mta {
+namespace {
+
+using testing::TempFile;
+
+// 32 x 32 RGB facades and 16 x 16 layer-1 images, each far smaller than a 4 · 64² byte block: in version 1
+// several of them shared a block, in version 2 each has one of its own.
+struct Good {
+  TempFile file{"good.mta"};
+  Good() {
+    BuildParams p;
+    p.atlasSize = 64;
+    p.border = 2;
+    p.tanHalfFov = 0.5;
+    p.screenWidth = 256;
+    p.dMin = 2.0;
+    buildMta(testing::gridScene(8, 8, 32, 2.0f, true, true), p, file.path);
+  }
+  const MtaMeta& meta() const {
+    static const PagingFile f(file.path);
+    return f.meta();
+  }
+};
+const Good& good() {
+  static const Good g;
+  return g;
+}
+
+std::string errorOf(const std::string& path) {
+  try {
+    const PagingFile f(path);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Opens `good` with `edit` applied and expects an Error that names the file, `field` and `reason`.
+void expectRefused(const std::function<void(MtaMeta&)>& edit, const std::string& field, const std::string& reason) {
+  TempFile bad("bad.mta");
+  testing::rewriteMetadata(good().file.path, bad.path, edit);
+  const std::string m = errorOf(bad.path);
+  ASSERT_FALSE(m.empty()) << "accepted; expected an error about " << field;
+  EXPECT_EQ(m.rfind(bad.path + ": ", 0), 0u) << m;
+  EXPECT_NE(m.find(": " + field + ": "), std::string::npos) << m;
+  EXPECT_NE(m.find(reason), std::string::npos) << m;
+}
+
+TEST(PagingFileVersion, AVersion1FileIsRefusedWithAMessageToRebuildIt) {
+  TempFile old("old.mta");
+  std::vector<uint8_t> bytes = testing::readBytes(good().file.path);
+  const uint32_t one = 1;
+  std::memcpy(bytes.data() + 8, &one, 4);
+  testing::fixHeader(bytes);
+  testing::writeBytes(old.path, bytes);
+  const std::string m = errorOf(old.path);
+  EXPECT_EQ(m.rfind(old.path + ": format version 1: its original images share blocks", 0), 0u) << m;
+  EXPECT_NE(m.find("rebuild it with `tessera mta build`"), std::string::npos) << m;
+}
+
+TEST(PagingFileVersion, TwoImagesInOneOriginalBlockAreRefused) {
+  // The version 1 layout: the first two images packed into the first original block. Blocks 0 and 1
+  // hold one image each and follow each other without padding, so merging them into block 0 (and
+  // renumbering the later blocks) gives a directory that is valid in every other respect.
+  const MtaMeta& g = good().meta();
+  ASSERT_EQ(g.blocks[0].kind, BlockKind::Original);
+  ASSERT_EQ(g.blocks[1].kind, BlockKind::Original);
+  ASSERT_EQ(g.pieces[0].block, 0u);
+  ASSERT_EQ(g.pieces[1].block, 1u);
+  ASSERT_NE(g.pieces[0].image, g.pieces[1].image);
+  ASSERT_EQ(g.blocks[0].offset + g.blocks[0].size, g.blocks[1].offset) << "block 0 should need no padding";
+  expectRefused(
+      [](MtaMeta& m) {
+        const uint64_t first = m.blocks[0].size;
+        m.blocks[0].size += m.blocks[1].size;
+        m.blocks.erase(m.blocks.begin() + 1);
+        m.pieces[1].block = 0;
+        m.pieces[1].offset = first;
+        for (size_t j = 2; j < m.pieces.size(); ++j) --m.pieces[j].block;
+        for (Tree& t : m.trees)
+          for (uint32_t& b : t.atlasBlocks) b -= b > 1 ? 1 : 0;
+      },
+      "pieces[1].block",
+      "0, which already holds pieces[0] (image " + std::to_string(g.pieces[0].image) +
+          "): every original-texture block holds one piece, so each image starts blocks of its own (format version 2)");
+}
+
+}  // namespace
+}  // namespace tessera::mta
