@@ -15,6 +15,7 @@
 #include "mta/runtime_geometry.h"
 #include "mta/traversal.h"
 #include "mta_file_edit.h"
+#include "grid_tree_file.h"
 #include "mta_test_scene.h"
 
 namespace tessera::mta {
@@ -22,37 +23,8 @@ namespace {
 
 using testing::TempFile;
 
-// An 8 x 8 grid of textured quads with a second layer and RGBA quads: two trees (RGB, RGBA), inner nodes
-// with 2 and 4 children, leaves, every image in an original-texture block of its own.
-struct Good {
-  TempFile file{"good.mta"};
-  Good() {
-    BuildParams p;
-    p.atlasSize = 64;
-    p.border = 2;
-    p.tanHalfFov = 0.5;
-    p.screenWidth = 256;
-    p.dMin = 2.0;
-    buildMta(testing::gridScene(8, 8, 32, 2.0f, true, true), p, file.path);
-  }
-  const MtaMeta& meta() const {
-    static const PagingFile f(file.path);
-    return f.meta();
-  }
-};
-const Good& good() {
-  static const Good g;
-  return g;
-}
-
-std::string errorOf(const std::string& path, const ResourceLimits& limits = {}) {
-  try {
-    const PagingFile f(path, limits);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::errorOf;
+using testing::good;
 
 // Opens `good` with `edit` applied and expects an Error that names the file, contains `field` (the
 // record, index and field) and `reason`.

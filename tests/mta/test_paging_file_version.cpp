@@ -12,6 +12,7 @@
 #include "mta/build.h"
 #include "mta/paging_file.h"
 #include "mta_file_edit.h"
+#include "grid_tree_file.h"
 #include "mta_test_scene.h"
 
 namespace tessera::mta {
@@ -19,37 +20,8 @@ namespace {
 
 using testing::TempFile;
 
-// 32 x 32 RGB facades and 16 x 16 layer-1 images, each far smaller than a 4 · 64² byte block: in version 1
-// several of them shared a block, in version 2 each has one of its own.
-struct Good {
-  TempFile file{"good.mta"};
-  Good() {
-    BuildParams p;
-    p.atlasSize = 64;
-    p.border = 2;
-    p.tanHalfFov = 0.5;
-    p.screenWidth = 256;
-    p.dMin = 2.0;
-    buildMta(testing::gridScene(8, 8, 32, 2.0f, true, true), p, file.path);
-  }
-  const MtaMeta& meta() const {
-    static const PagingFile f(file.path);
-    return f.meta();
-  }
-};
-const Good& good() {
-  static const Good g;
-  return g;
-}
-
-std::string errorOf(const std::string& path) {
-  try {
-    const PagingFile f(path);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::errorOf;
+using testing::good;
 
 // Opens `good` with `edit` applied and expects an Error that names the file, `field` and `reason`.
 void expectRefused(const std::function<void(MtaMeta&)>& edit, const std::string& field, const std::string& reason) {
