@@ -10,6 +10,7 @@
 #include "mta/build.h"
 #include "mta/tree_renderer.h"
 #include "mta_test_scene.h"
+#include "wall_tree_file.h"
 
 namespace tessera::mta {
 namespace {
@@ -17,26 +18,7 @@ namespace {
 using testing::gridScene;
 using testing::TempFile;
 
-// A 12 x 12 wall of textured unit quads with small atlases and a small d_min: a tree several levels deep.
-struct Fixture {
-  TempFile file{"policy.mta"};
-  std::unique_ptr<PagingFile> tree;
-  Fixture() {
-    BuildParams p;
-    p.atlasSize = 64;
-    p.border = 2;
-    p.dMin = 1.5;
-    p.screenWidth = 256;
-    p.threads = 2;
-    buildMta(gridScene(12, 12, 32, 2.0f), p, file.path);
-    tree = std::make_unique<PagingFile>(file.path);
-  }
-};
-
-Fixture& fixture() {
-  static Fixture f;
-  return f;
-}
+using testing::fixture;
 
 LoadBudget wholeBlocks(uint64_t perFrame) {
   LoadBudget b;

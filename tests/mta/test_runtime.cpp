@@ -9,6 +9,7 @@
 #include "mta/tree_renderer.h"
 #include "base/sha256.h"
 #include "mta_test_scene.h"
+#include "wall_tree_file.h"
 
 namespace tessera::mta {
 namespace {
@@ -16,27 +17,7 @@ namespace {
 using testing::gridScene;
 using testing::TempFile;
 
-// A 12 x 12 wall of textured unit quads in the x-y plane, built with small atlases and a small d_min so
-// the tree is several levels deep.
-struct Fixture {
-  TempFile file{"runtime.mta"};
-  std::unique_ptr<PagingFile> tree;
-  Fixture() {
-    BuildParams p;
-    p.atlasSize = 64;
-    p.border = 2;
-    p.dMin = 1.5;
-    p.screenWidth = 256;
-    p.threads = 2;
-    buildMta(gridScene(12, 12, 32, 2.0f), p, file.path);
-    tree = std::make_unique<PagingFile>(file.path);
-  }
-};
-
-Fixture& fixture() {
-  static Fixture f;
-  return f;
-}
+using testing::fixture;
 
 // Approach the wall from far away, then pan along it close up, then pull back.
 std::vector<Camera> path() {
