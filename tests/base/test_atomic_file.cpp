@@ -134,6 +134,13 @@ TEST(AtomicFile, ADirectoryInTheWayIsAnErrorNamingThePath) {
 }
 
 void expectSignalRemovesTemporary(int sig, int expectedStatus) {
+  // A process started in the background by a non-interactive shell inherits SIGINT as SIG_IGN, and
+  // AtomicFile rightly leaves an ignored signal alone: the child would then pause for ever. Say so
+  // instead of hanging (ctest resets every disposition to the default in the processes it starts).
+  struct sigaction current{};
+  ASSERT_EQ(::sigaction(sig, nullptr, &current), 0);
+  ASSERT_FALSE(!(current.sa_flags & SA_SIGINFO) && current.sa_handler == SIG_IGN)
+      << "signal " << sig << " is ignored in this test process (inherited from the shell that started it)";
   TempDir t;
   const std::string path = t.file("frame.tframe");
   writeFileAtomically(path, std::string_view("the old output"));
