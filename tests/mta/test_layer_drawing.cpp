@@ -1,7 +1,8 @@
 // Layer 1 drawn by the atlas tree renderer (thesis §5.1.3, spec choice F13): the light map multiplies
 // layer 0 through the node's layer-1 atlas and through the originals, unit 1's binds are counted, the
 // memory manager requests layer 1's blocks, the build leaves the layer-1 area of a mesh without one
-// white, and a file without layer 1 is drawn as before.
+// white, a file without layer 1 is drawn as before, and a model whose layer 1 cannot share layer 0's
+// atlas areas is refused before anything is written (mta/layer_maps.h).
 //
 // The scene is two unit quads of constant colour facing the camera, so every filter returns the texel
 // itself and the expected pixels follow from the formula alone: quad A (200, 100, 50) with a constant
@@ -9,10 +10,15 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <filesystem>
+#include <string>
 
+#include "base/error.h"
+#include "model/model.h"
 #include "mta/build.h"
 #include "mta/tree_renderer.h"
 #include "mta_test_scene.h"
+#include "tests/model/occlusion_gltf.h"
 
 namespace tessera::mta {
 namespace {
@@ -214,6 +220,90 @@ TEST(LayerDrawing, TheMemoryManagerRequestsAndPinsLayerOneBlocks) {
   for (uint32_t b = 0; b < m.blocks.size(); ++b)
     if (m.blocks[b].kind == BlockKind::Original && m.blocks[b].node == 2) lightMapRequested |= pr[b].usage != Usage::Unused;
   EXPECT_TRUE(lightMapRequested);
+}
+
+
+// Two quads on the same base texture (image 0) over the same texcoords, so both map onto one atlas area
+// (layer 0 is not injective); quad A has light map 1 on texcoords uv0, quad B texture `b1` (-1: none) on
+// uv0 + bOffset. Textures 1 and 2 are images 1 and 2 with `wrap`.
+Scene sharedBase(int32_t b1, glm::vec2 bOffset, model::Wrap wrap) {
+  Scene s;
+  s.name = "shared.gltf";
+  Geometry& g = s.geometry;
+  g.layers.resize(2);
+  s.images = {SceneImage{16, 16, "base.png"}, SceneImage{16, 16, "light1.png"}, SceneImage{16, 16, "light2.png"}};
+  s.textures = {SceneTexture{0}, SceneTexture{1, wrap, wrap}, SceneTexture{2, wrap, wrap}};
+  for (int q = 0; q < 2; ++q) {
+    const float x = float(q);
+    const glm::vec3 p[4] = {{x, 0, 0}, {x + 1, 0, 0}, {x + 1, 1, 0}, {x, 1, 0}};
+    const glm::vec2 t[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    const int tri[2][3] = {{0, 1, 2}, {0, 2, 3}};
+    for (int k = 0; k < 2; ++k) {
+      for (int i = 0; i < 3; ++i) {
+        g.positions.push_back(p[tri[k][i]]);
+        g.layers[0].uv.push_back(t[tri[k][i]]);
+        g.layers[1].uv.push_back(t[tri[k][i]] + (q == 1 ? bOffset : glm::vec2(0.0f)));
+      }
+      g.layers[0].texture.push_back(0);
+      g.layers[1].texture.push_back(q == 0 ? 1 : b1);
+      g.source.push_back(uint32_t(g.source.size()));
+      g.alpha.push_back(0);
+    }
+  }
+  s.loadImage = [](uint32_t) {
+    model::Image img;
+    img.width = img.height = 16;
+    img.rgba.assign(16 * 16 * 4, 200);
+    return img;
+  };
+  return s;
+}
+
+std::string buildError(const Scene& s, const std::string& path) {
+  try {
+    build(s, path);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(LayerMaps, TrianglesSharingAnAtlasAreaAreAcceptedWhenTheyMapLayerOneAlikeModuloTheRepeat) {
+  // Not injective (both quads on the same texels), but one light map through the same map, a whole
+  // repeat apart: the area's one fill is right for both.
+  TempFile file("shared.mta");
+  EXPECT_EQ(buildError(sharedBase(1, {1.0f, -2.0f}, model::Wrap::Repeat), file.path), "");
+}
+
+TEST(LayerMaps, AnotherLightMapInTheSameAreaIsRefusedNamingBothTriangles) {
+  TempFile file("shared.mta");
+  const std::string e = buildError(sharedBase(2, {0.0f, 0.0f}, model::Wrap::Repeat), file.path);
+  EXPECT_NE(e.find("shared.gltf: layer 1 cannot share layer 0's atlas: input triangle 0 and input triangle 2"),
+            std::string::npos) << e;
+  EXPECT_NE(e.find("'base.png'"), std::string::npos) << e;
+  EXPECT_NE(e.find("textures differ ('light1.png' and 'light2.png'"), std::string::npos) << e;
+  EXPECT_FALSE(std::filesystem::exists(file.path)) << "refused before anything is written";
+}
+
+TEST(LayerMaps, TheSameLightMapAtOtherTexcoordsIsRefusedWithTheDistanceInTexels) {
+  // Half the image to the right, clamped: 8 texels of a 16-texel light map.
+  TempFile file("shared.mta");
+  const std::string e = buildError(sharedBase(1, {0.5f, 0.0f}, model::Wrap::ClampToEdge), file.path);
+  EXPECT_NE(e.find("input triangle 0 and input triangle 2"), std::string::npos) << e;
+  EXPECT_NE(e.find("vertex 0 of the second lies 8 texels (s) and 0 texels (t) of 'light1.png'"), std::string::npos) << e;
+}
+
+TEST(LayerMaps, AGltfMeshWithoutAnOcclusionTextureOnTheBaseTextureOfOneWithItIsRefusedNamingTheMeshes) {
+  // occlusion_gltf.h: meshes 0 ("lit", occlusion on TEXCOORD_1) and 1 ("plain", none) share base texture 0.
+  model::testing::ScratchDir dir;
+  const Scene s = sceneFromModel(
+      std::make_shared<const model::Model>(model::loadModel(model::testing::writeOcclusionGltf(dir, 1.0))));
+  TempFile file("gltf.mta");
+  const std::string e = buildError(s, file.path);
+  EXPECT_NE(e.find("layer 1 cannot share layer 0's atlas: mesh "), std::string::npos) << e;
+  EXPECT_NE(e.find("(0) triangle 0 and mesh "), std::string::npos) << e;
+  EXPECT_NE(e.find("(1) triangle 0"), std::string::npos) << e;
+  EXPECT_NE(e.find("the second has no layer-1 texture"), std::string::npos) << e;
 }
 
 }  // namespace
