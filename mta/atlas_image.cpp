@@ -87,6 +87,10 @@ void fillArea(uint8_t* atlas, uint32_t A, uint32_t channels, uint32_t x0, uint32
     }
 }
 
+std::vector<uint8_t> blankAtlas(uint32_t A, uint32_t channels, uint32_t layer) {
+  return std::vector<uint8_t>(size_t(A) * A * channels, layer == 0 ? 0 : 255);
+}
+
 void downsampleIntoQuadrant(const uint8_t* child, uint8_t* parent, uint32_t A, uint32_t channels, int q) {
   const uint32_t half = A / 2, ox = (q & 1) * half, oy = (q >> 1) * half;
   for (uint32_t y = 0; y < half; ++y)

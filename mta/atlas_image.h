@@ -5,7 +5,8 @@
 // at the largest level L with 2^L <= footprint, then bilinear filtering with 8-bit weights (RNE of
 // α·256) in exact integer arithmetic, rounded half to even once; the texture's wrap mode is honoured.
 // And the inner-node rule: each child atlas downsampled 2x by 2x2 averages, unorm8 rounded half to
-// even (the box filter's rules, spec choice T13), into its quadrant.
+// even (the box filter's rules, spec choice T13), into its quadrant. And what an atlas holds where no
+// area is filled, per layer (blankAtlas).
 // Does not implement: layout (tree_build.h), I/O (paging_file.h).
 #pragma once
 
@@ -33,6 +34,13 @@ struct AffineMap {
 // Fills texels [x0, x0 + w) x [y0, y0 + h) of an A x A atlas with `channels` (3 or 4) bytes per texel.
 void fillArea(uint8_t* atlas, uint32_t A, uint32_t channels, uint32_t x0, uint32_t y0, uint32_t w, uint32_t h,
               const AffineMap& map, const MipImage& img, model::Wrap wrapS, model::Wrap wrapT);
+
+// An A x A atlas with `channels` bytes per texel before any area is filled: 0 for layer 0, 255 for layers
+// >= 1. A layer >= 1 is multiplied into layer 0 (§5.1.3, program "textured_layers": a light map or an
+// occlusion map), so white is its neutral value: the area of a mesh that has no texture of that layer
+// stays blank and must leave the base colour unchanged (factor 1), and so must an inner atlas's empty
+// quadrant where trilinear filtering reaches into it.
+std::vector<uint8_t> blankAtlas(uint32_t A, uint32_t channels, uint32_t layer);
 
 // Downsamples an A x A child atlas 2x into quadrant q of the parent atlas.
 void downsampleIntoQuadrant(const uint8_t* child, uint8_t* parent, uint32_t A, uint32_t channels, int q);

@@ -168,7 +168,7 @@ void renderLeaf(const Scene& s, const Tree& tree, uint32_t node, uint32_t layer,
                 std::vector<uint8_t>& out) {
   const Node& n = tree.nodes[node];
   const uint32_t C = tree.channels();
-  out.assign(size_t(A) * A * C, 0);
+  out = blankAtlas(A, C, layer);
   for (const AtlasEntry& e : n.entries) {
     if (layer == 0) {
       const SceneTexture& tex = s.textures[e.texture];
@@ -343,7 +343,8 @@ BuildReport buildMta(const Scene& scene, const BuildParams& params, const std::s
       if (it == open.end()) {
         int kids = 0;
         for (int32_t c : tree.nodes[parent].children) kids += c >= 0;
-        it = open.emplace(uint32_t(parent), std::make_pair(std::vector<std::vector<uint8_t>>(layers, std::vector<uint8_t>(size_t(A) * A * C, 0)), kids)).first;
+        it = open.emplace(uint32_t(parent), std::make_pair(std::vector<std::vector<uint8_t>>(layers), kids)).first;
+        for (uint32_t l = 0; l < layers; ++l) it->second.first[l] = blankAtlas(A, C, l);
       }
       int q = 0;
       while (tree.nodes[parent].children[q] != int32_t(node)) ++q;

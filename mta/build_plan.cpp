@@ -6,6 +6,7 @@
 
 #include "base/error.h"
 #include "mta/critical.h"
+#include "mta/layer_maps.h"
 #include "mta/tree_build.h"
 
 namespace tessera::mta {
@@ -60,6 +61,7 @@ BuildPlan planBuild(const Scene& scene, const BuildParams& params, const std::fu
       if (g.alpha[t] == alpha) tris.push_back(t);
     if (tris.empty()) continue;
     meta.trees.push_back(buildTree(scene, g, tris, alpha, params, crit.dMinUsed));
+    checkLayerMaps(scene, meta.trees.back());  // before anything is written (layer_maps.h)
   }
   // Leaf image lists, image channels and first-use order.
   meta.images.resize(scene.images.size());

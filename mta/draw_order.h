@@ -4,8 +4,11 @@
 // with its original textures binds them again although a leaf before it bound the same ones: railway.glb
 // (28 textures) bound up to 228 textures a frame. groupDrawsByTexture reorders the plan so that every
 // draw of one texture follows the first draw that binds it:
-// - a draw's texture key is the node atlas it binds (tree, node), the scene texture of an original
-//   draw, or the white texture (the dummy run's, and separately the grey-tinted untextured triangles');
+// - a draw's texture key is the node atlas it binds (tree, node; on a file with a layer 1 the node's
+//   layer-1 atlas comes with it), the pair of scene textures of an original draw (layer 0's and layer
+//   1's, which the recorder binds on units 0 and 1: keying by layer 0 alone would merge draws that need
+//   different light maps), or the white texture (the dummy run's, and separately the grey-tinted
+//   untextured triangles');
 // - keys keep the order in which the traversal first drew them, and inside a key the draws keep the
 //   traversal's order (a stable sort by the rank of first appearance), so the result is a function of
 //   the plan alone;
@@ -13,7 +16,8 @@
 //   contiguous in runtime_geometry.h's layout, so the last run of a leaf and the first run of the next
 //   leaf often share a texture). A merged original draw keeps the first leaf in PlannedDraw::node.
 // Then the recorder (which binds only when the unit's binding changes) binds each texture once: at most
-// one bind per node drawn with its atlas plus one per distinct original texture, plus the white texture.
+// one bind per node drawn with its atlas plus one per distinct original texture, plus the white texture
+// (with a layer 1, unit 1 likewise binds once per distinct atlas, pair or white).
 //
 // Why the image stays correct: frames are opaque, with the depth test on (LESS, writes on) and neither
 // blending nor alpha test (frame_recorder.h). A pixel's final depth is then the least depth of all its

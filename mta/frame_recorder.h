@@ -7,7 +7,16 @@
 // draw_order.h): an atlas draw binds the node's atlas, sets the texture matrix diag(2^level) (§4.5.4,
 // REPEAT addressing) and draws root-atlas texcoords; an original draw binds the scene texture with its
 // wrap modes and the identity matrix and draws the original texcoords; the dummy run uses a 1x1 white
-// texture, untextured triangles the same with a grey tint (slot 7). Filtering is trilinear everywhere
+// texture, untextured triangles the same with a grey tint (slot 7). A file with a layer 1 (§5.1.3) is
+// drawn with program "textured_layers" instead, layer 1 on unit 1 (spec choice F13): an atlas draw binds
+// the node's layer-1 atlas with the same texture matrix and coordinates (the layers share the atlas
+// parameterization, runtime_geometry.h), an original draw the triangles' layer-1 texture with its wrap
+// modes and texcoords, and every other draw (no layer-1 texture, white, untextured) the 1x1 white
+// texture, whose factor is exactly 1, so those pixels equal "textured"'s. Slot 12 = (1, 1): strength 1
+// and the R-only mode, because layer 1 is glTF's occlusionTexture (sceneFromModel), whose G and B may
+// hold other data (ORM packing). The strength is 1 because the paging file does not store glTF's
+// occlusion strength (one per material, where the tree keeps textures per triangle); every occlusion
+// map this project makes (`tessera city --light-map`) has strength 1. Filtering is trilinear everywhere
 // (LINEAR_MIPMAP_LINEAR), mip chains come from the documented box filter (raster/texture.h). Alpha is not
 // tested or blended: the thesis's comparison runs did the same (§4.7.2) so that texture content cannot
 // change the frame cost.
@@ -29,10 +38,13 @@
 
 namespace tessera::mta {
 
-// The layers recordFrame samples: layer 0, the atlases' layout layer, and the originals' layer-0 textures.
-// The memory manager and the traversals request the blocks of these layers only (TreeRenderer), so a
-// recorder that draws layer 1 too sets bit 1 here and its blocks are requested from then on.
-constexpr LayerMask kRecordedLayers = 1;
+// The layers recordFrame samples: layer 0 (the atlases' layout layer and the originals' base colour) and
+// layer 1 where the file has it. The memory manager and the traversals request the blocks of these layers
+// only (TreeRenderer; buildBlockIndex ignores the bit of a layer the file lacks, so a one-layer file is
+// paged as before). Layers >= 2 are not drawn ("textured_layers" combines two) and so not requested.
+constexpr LayerMask kRecordedLayers = 0b11;
+// Whether recordFrame draws layer 1 for this file.
+inline bool recordsLayer1(const MtaMeta& meta) { return meta.layerCount > 1 && (kRecordedLayers & 2) != 0; }
 
 struct RecordParams {
   uint32_t width = 1024, height = 768;

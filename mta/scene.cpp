@@ -85,6 +85,15 @@ Scene sceneFromModel(std::shared_ptr<const model::Model> m) {
     }
   }
   s.loadImage = [m](uint32_t image) { return model::loadTexture(*m, image); };
+  s.describeTriangle = [m](uint32_t source) {
+    uint64_t k = source;  // the triangles follow the meshes' order (above)
+    for (size_t i = 0; i < m->meshes.size(); ++i) {
+      if (k < m->meshes[i].triangleCount())
+        return "mesh '" + m->meshes[i].name + "' (" + std::to_string(i) + ") triangle " + std::to_string(k);
+      k -= m->meshes[i].triangleCount();
+    }
+    return "input triangle " + std::to_string(source);
+  };
   s.validate();
   return s;
 }

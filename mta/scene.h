@@ -55,6 +55,9 @@ struct Scene {
   // Decodes image i as RGBA8, rows top first. Must be callable from several threads at once.
   std::function<model::Image(uint32_t image)> loadImage;
   std::string name;  // for messages
+  // Optional, for messages: names input triangle `source` (Geometry::source), e.g. "mesh 'roof' (3) triangle
+  // 7"; without it messages say "input triangle N".
+  std::function<std::string(uint32_t source)> describeTriangle;
   // Throws Error naming the triangle / texture that is inconsistent (sizes, indices, non-finite values).
   void validate() const;
 };

@@ -76,14 +76,15 @@ std::vector<uint8_t> toRGBA(const uint8_t* src, size_t texels, uint32_t channels
 
 }  // namespace
 
-const MipChain& TextureCache::atlas(uint8_t tree, uint32_t node) {
-  const uint64_t key = (uint64_t(1) << 62) | (uint64_t(tree) << 32) | node;
+const MipChain& TextureCache::atlas(uint8_t tree, uint32_t node, uint32_t layer) {
+  const uint64_t key = (uint64_t(1) << 62) | (uint64_t(layer & 0xff) << 40) | (uint64_t(tree) << 32) | node;
   if (auto it = entries_.find(key); it != entries_.end()) return *it->second.chain;
   const MtaMeta& m = file_.meta();
-  if (tree >= m.trees.size() || size_t(node) * m.layerCount >= m.trees[tree].atlasBlocks.size())
+  if (tree >= m.trees.size() || layer >= m.layerCount ||
+      size_t(node) * m.layerCount + layer >= m.trees[tree].atlasBlocks.size())
     throw Error("texture cache: internal error: atlas of tree " + std::to_string(tree) + " node " +
-                std::to_string(node) + " out of range");
-  const uint32_t block = m.trees[tree].atlasBlocks[size_t(node) * m.layerCount];
+                std::to_string(node) + " layer " + std::to_string(layer) + " out of range");
+  const uint32_t block = m.trees[tree].atlasBlocks[size_t(node) * m.layerCount + layer];
   const std::span<const uint8_t> raw = blockBytes(block);
   const uint32_t a = m.params.atlasSize;
   // The validator fixes an atlas block's size; a wrong one here would be read past its end.

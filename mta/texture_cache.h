@@ -1,7 +1,7 @@
 // The texture cache of the atlas tree renderer: RGBA8 mip chains of the textures a frame binds, made
 // from paging-file blocks.
 //
-// Implements: atlas(tree, node) (the node's root-layer atlas, A x A) and image(i) (an original scene
+// Implements: atlas(tree, node, layer) (the node's atlas of that layer, A x A) and image(i) (an original scene
 // texture reassembled from its pieces), each converted to RGBA8 (3-channel texels get alpha 255) and
 // reduced to a full mip chain with the documented box filter (raster/texture.h buildMipChainRGBA8).
 // Two modes:
@@ -46,7 +46,7 @@ class TextureCache {
   TextureCache(const PagingFile& file, const Residency* residency, uint64_t fileCacheBytes = uint64_t(2) << 30);
   // Drops chains whose blocks were removed or reloaded since they were made.
   void prune();
-  const MipChain& atlas(uint8_t tree, uint32_t node);
+  const MipChain& atlas(uint8_t tree, uint32_t node, uint32_t layer = 0);
   const MipChain& image(uint32_t image);
   uint64_t bytes() const { return bytes_; }
 

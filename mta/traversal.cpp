@@ -250,7 +250,7 @@ struct Planner {
     PlannedDraw* last = out.empty() ? nullptr : &out.back();
     // Adjacent ranges with the same texture become one draw (§4.8.1).
     if (last && last->source == d.source && last->tree == d.tree && last->node == d.node && last->texture == d.texture &&
-        last->first + last->count == d.first) {
+        last->texture1 == d.texture1 && last->first + last->count == d.first) {
       last->count += d.count;
       return;
     }
@@ -268,7 +268,7 @@ struct Planner {
     else
       for (uint32_t r = 0; r < lr.runCount; ++r) {
         const TextureRun& run = g.runs[lr.runFirst + r];
-        append(plan.draws, {DrawSource::Original, uint8_t(tree), leaf, run.texture, run.first, run.count});
+        append(plan.draws, {DrawSource::Original, uint8_t(tree), leaf, run.texture, run.first, run.count, run.texture1});
       }
     append(white, {DrawSource::Untextured, uint8_t(tree), 0, -1, lr.untexturedFirst, lr.untexturedCount});
   }

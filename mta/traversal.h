@@ -73,8 +73,8 @@ struct BlockIndex {
   uint32_t atlasPerNode = 1;  // the drawn layers that the file has
   LayerMask layers = 1;       // which ones
 };
-// drawnLayers: bit l set when the renderer samples layer l (frame_recorder.h kRecordedLayers: layer 0
-// today); bits of layers the file lacks are ignored. Error if it names none of the file's layers.
+// drawnLayers: bit l set when the renderer samples layer l (frame_recorder.h kRecordedLayers: layers 0
+// and 1); bits of layers the file lacks are ignored. Error if it names none of the file's layers.
 // Precondition: `meta` passed PagingFile's validation. Also checks what the walkers of this file index
 // with (child indices that only increase, block, texture and image indices in range): a meta that breaks
 // it is an Error ("internal error"), never an access out of bounds or an endless walk.
@@ -107,8 +107,9 @@ struct PlannedDraw {
   uint8_t tree = 0;
   uint32_t node = 0;      // Atlas: the node whose atlas is bound; Original: the leaf (the first, once
                           // groupDrawsByTexture merged contiguous ranges of several leaves)
-  int32_t texture = -1;   // Original: scene texture
+  int32_t texture = -1;   // Original: scene texture (layer 0)
   uint32_t first = 0, count = 0;  // global triangles (runtime_geometry.h)
+  int32_t texture1 = -1;  // Original: scene texture of layer 1 (runtime_geometry.h TextureRun), -1 = none
 };
 
 struct FramePlan {

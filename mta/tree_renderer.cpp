@@ -102,6 +102,7 @@ nlohmann::json toJson(const FrameResult& r, RenderMode mode) {
   j["mode"] = renderModeName(mode);
   j["texture_binds"] = r.counters.texture_binds;
   j["texture_state_changes"] = r.counters.texture_state_changes;
+  j["texture_binds_unit1"] = r.counters.units[1].texture_binds;  // layer 1 (files that have one)
   j["draw_calls"] = r.counters.draw_calls;
   j["state_changes"] = r.counters.state_changes;
   j["triangles_drawn"] = r.plan.trianglesDrawn;

@@ -67,6 +67,8 @@ class TreeRenderer {
   const PagingFile& file() const { return file_; }
   const RendererOptions& options() const { return options_; }
   const Residency* residency() const { return residency_.get(); }
+  // The command list of the last frame recorded (renderFrame or triangleIds), e.g. to write as a .tframe.
+  const CommandList& lastList() const { return recorded_.list; }
   ViewParams view(const Camera& camera) const;
 
  private:

@@ -265,6 +265,32 @@ PY
     "$tessera" mta info lit.mta > litinfo.json 2> /dev/null
     [ "$(json_field litinfo.json "['layers']")" = 2 ] || fail "the light map is not layer 1: $(cat litinfo.json)"
     cmp -s lit.mta litsplit.mta || fail "the split city's light-mapped tree differs from the one-file city's"
+    # The light map drawn (§5.1.3): with every block loaded the lit and the plain tree draw the same nodes;
+    # the lit frames bind layer 1 on unit 1 (the plain ones never) and, where they differ, every channel is
+    # darker (the light map multiplies by at most 1). compare lists the first differing pixels.
+    "$tessera" mta render tree.mta --frames 4 --size 160x120 --save-every 1 --budget unlimited -o plainr --quiet > /dev/null
+    "$tessera" mta render lit.mta --frames 4 --size 160x120 --save-every 1 --budget unlimited -o litr --quiet > /dev/null
+    python3 -c "
+import json, sys
+lit, plain = (json.load(open(d + '/frames.json'))['frames'] for d in ('litr', 'plainr'))
+for a, b in zip(lit, plain):
+    for k in ('nodes_with_atlas', 'nodes_with_original_textures', 'leaves_drawn', 'draw_calls'):
+        if a[k] != b[k]: sys.exit('frame %d: %s %d lit, %d plain' % (a['frame'], k, a[k], b[k]))
+    if a['texture_binds_unit1'] < 1 or b['texture_binds_unit1'] != 0: sys.exit('frame %d: unit 1 binds' % a['frame'])
+" || fail "the lit and the plain frames differ in what they draw or bind"
+    darker=0
+    for f in 0000 0001 0002 0003; do
+      rc=0; "$tessera" compare litr/frame_$f.png plainr/frame_$f.png > cmp.json || rc=$?
+      [ "$rc" = 2 ] || continue
+      python3 -c "
+import json, sys
+d = json.load(open('cmp.json'))
+for p in d['first_differences']:
+    if any(l > q for l, q in zip(p['expected'][:3], p['actual'][:3])): sys.exit('pixel %d,%d: lit %s, plain %s' % (p['x'], p['y'], p['expected'], p['actual']))
+" || fail "frame $f: a lit pixel is brighter than the plain one"
+      darker=$((darker + 1))
+    done
+    [ "$darker" -ge 1 ] || fail "no lit frame differs from the plain one: the light map is not drawn"
     ;;
   scene_manifest_and_directory_work_in_every_model_command)
     # A berlin city written whole and split per building (docs/model-import.md "Scenes of several files"):

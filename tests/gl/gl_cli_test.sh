@@ -47,6 +47,24 @@ case "$case_name" in
       [ "$(json_field out.json "['counters']['equal']")" = "True" ] || fail "$f: GL call counts differ on softpipe"
     done
     ;;
+  light_mapped_atlas_tree_frames_are_explained_on_llvmpipe_and_softpipe)
+    # Layer 1 drawn (issue 14 §5, spec choice F13): a light-mapped city's atlas tree over a path with
+    # nodes drawn with their atlases and leaves with their originals, every saved frame (program
+    # textured_layers, unit 1 bound) cross-checked on both drivers: no unexplained pixel, equal call counts.
+    "$tessera" city --preset berlin --buildings 6 --seed 3 --light-map -o lit --quiet > /dev/null
+    "$tessera" mta build lit/berlin.gltf -o lit.mta --d-min 50 --quiet > /dev/null
+    "$tessera" mta render lit.mta --frames 8 --size 160x120 --save-every 2 --record -o r --quiet > /dev/null
+    originals=$(python3 -c "import json; print(sum(f['nodes_with_original_textures'] for f in json.load(open('r/frames.json'))['frames'] if 'tframe' in f))")
+    [ "$originals" -ge 1 ] || fail "no saved frame draws original textures"
+    for f in r/*.tframe; do
+      "$tessera" crosscheck "$f" --no-bisect > out.json || fail "$f on llvmpipe: $(cat out.json | head -c 400)"
+      [ "$(json_field out.json "['unexplained']")" = "0" ] || fail "$f: unexplained pixels on llvmpipe"
+      [ "$(json_field out.json "['counters']['equal']")" = "True" ] || fail "$f: GL call counts differ on llvmpipe"
+      softpipe_or_skip "$tessera" crosscheck "$f" --gl-driver softpipe --no-bisect
+      [ "$(json_field out.json "['unexplained']")" = "0" ] || fail "$f: unexplained pixels on softpipe"
+      [ "$(json_field out.json "['counters']['equal']")" = "True" ] || fail "$f: GL call counts differ on softpipe"
+    done
+    ;;
   a_silhouette_tie_with_a_surface_drawn_behind_later_is_explained_on_softpipe)
     # city_block cut to draws 146 and 162 (docs/softpipe-edge-flips.md, section 2): at (41,107) softpipe
     # covers draw 146's silhouette edge 0.00047 px inside and draw 162 then fails the depth test; the

@@ -13,7 +13,8 @@ namespace tessera::mta::testing {
 
 // A grid of nx x ny unit quads (2 triangles each) in the x-y plane, each with its own size x size texture
 // repeated `repeats` times, texcoords offset by the quad index (so integer offsets differ). Optionally a
-// second layer (one texture per triangle, texcoords (0,0),(1,0),(0,1)) and RGBA quads every 5th.
+// second layer (a clamped texture per quad over the whole quad, texcoords (0,0) to (1,1): each quad maps it
+// the same way through both triangles, as layer_maps.h requires) and RGBA quads every 5th.
 inline Scene gridScene(int nx, int ny, uint32_t size = 32, float repeats = 2.0f, bool secondLayer = false, bool someAlpha = false) {
   Scene s;
   s.name = "grid";
@@ -39,12 +40,14 @@ inline Scene gridScene(int nx, int ny, uint32_t size = 32, float repeats = 2.0f,
       g.source.push_back(uint32_t(g.source.size()));
       g.alpha.push_back(someAlpha && q % 5 == 0 ? 1 : 0);
       if (secondLayer) {
-        const uint32_t img = uint32_t(s.images.size());
-        s.images.push_back(SceneImage{16, 16, "layer1_" + std::to_string(img)});
-        s.textures.push_back(SceneTexture{img, model::Wrap::ClampToEdge, model::Wrap::ClampToEdge});
-        g.layers[1].texture.push_back(layer1Base + 2 * q + k);
-        const glm::vec2 l1[3] = {{0, 0}, {1, 0}, {0, 1}};
-        for (int i = 0; i < 3; ++i) g.layers[1].uv.push_back(l1[i]);
+        if (k == 0) {
+          const uint32_t img = uint32_t(s.images.size());
+          s.images.push_back(SceneImage{16, 16, "layer1_" + std::to_string(img)});
+          s.textures.push_back(SceneTexture{img, model::Wrap::ClampToEdge, model::Wrap::ClampToEdge});
+        }
+        g.layers[1].texture.push_back(layer1Base + q);
+        const glm::vec2 l1[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+        for (int i = 0; i < 3; ++i) g.layers[1].uv.push_back(l1[tri[k][i]]);
       }
     }
   }

@@ -223,6 +223,28 @@ TEST(DrawOrder, AHandMadePlanIsGroupedByTextureInOrderOfFirstUseAndContiguousRan
         << p.draws[i].first << ", +" << p.draws[i].count << ")";
 }
 
+TEST(DrawOrder, OriginalDrawsAreGroupedByTheirPairOfLayerTexturesSoDifferentLightMapsNeverMerge) {
+  // Leaf 3: base texture 1 with light map 5 on [0, 2), with light map 6 on [2, 4); leaf 4: texture 1 with
+  // light map 5 on [4, 5), contiguous with nothing of its pair before it.
+  auto lit = [](uint32_t node, int32_t texture1, uint32_t first, uint32_t count) {
+    PlannedDraw d = draw(DrawSource::Original, node, 1, first, count);
+    d.texture1 = texture1;
+    return d;
+  };
+  FramePlan p;
+  p.draws = {lit(3, 5, 0, 2), lit(3, 6, 2, 2), lit(4, 5, 4, 1)};
+  groupDrawsByTexture(p);
+  // (1, 5) first, both of its draws apart (not contiguous), then (1, 6); keyed by texture 1 alone, the
+  // first two would have merged into one draw with light map 5 over [0, 4).
+  ASSERT_EQ(p.draws.size(), 3u);
+  const uint32_t first[3] = {0, 4, 2};
+  const int32_t light[3] = {5, 5, 6};
+  for (size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(p.draws[i].first, first[i]) << "draw " << i;
+    EXPECT_EQ(p.draws[i].texture1, light[i]) << "draw " << i;
+  }
+}
+
 TEST(DrawOrder, GroupingIsAFunctionOfThePlanAndDrawsEveryTriangleExactlyOnce) {
   const SharedTree& t = sharedTree(false);
   size_t framesReordered = 0;

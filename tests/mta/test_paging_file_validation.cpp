@@ -231,7 +231,7 @@ TEST(PagingFile, ALeafImageOutOfRangeIsRefused) {
 
 TEST(PagingFile, ALeafImageListRunningPastTheTableIsRefused) {
   expectRefused([](MtaMeta& m) { m.trees[1].nodes[2].imageCount = 1000; }, "trees[1].nodes[2].image_count",
-                "run past the tree's 47 leaf image entries");
+                "run past the tree's 42 leaf image entries");
 }
 
 TEST(PagingFile, ANodeDeeperThanTheFormatAllowsIsRefused) {
@@ -382,7 +382,7 @@ TEST(PagingFile, NanPositionsAreRefused) {
 
 TEST(PagingFile, ATextureIndexOfMinus2IsRefused) {
   expectRefused([](MtaMeta& m) { m.trees[0].geometry.layers[0].texture[9] = -2; }, "trees[0].layers[0].texture[9]",
-                "-2 is neither -1 (none) nor a texture index (192 textures)");
+                "-2 is neither -1 (none) nor a texture index (128 textures)");
 }
 
 TEST(PagingFile, ATextureIndexPastTheTexturesIsRefused) {
@@ -391,7 +391,7 @@ TEST(PagingFile, ATextureIndexPastTheTexturesIsRefused) {
 }
 
 TEST(PagingFile, ATextureNamingAMissingImageIsRefused) {
-  expectRefused([](MtaMeta& m) { m.textures[3].image = 192; }, "textures[3].image", "192 is out of range (192 images)");
+  expectRefused([](MtaMeta& m) { m.textures[3].image = 192; }, "textures[3].image", "192 is out of range (128 images)");
 }
 
 // ---- the block directory ---------------------------------------------------------------------------------

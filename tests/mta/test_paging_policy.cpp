@@ -137,8 +137,9 @@ RendererOptions unlimited(uint32_t width) {
 }
 
 TEST(PagingPolicy, NoBlockOfALayerThatNothingDrawsIsEverRequestedOrLoaded) {
-  // Two layers; the recorder draws layer 0 only.
-  ASSERT_EQ(kRecordedLayers, LayerMask(1)) << "this test assumes the recorder draws layer 0 alone";
+  // Two layers; a renderer drawing layer 0 alone (the memory manager and the traversals driven as
+  // TreeRenderer drives them, with drawn layers {0}: the recorder itself draws both since layer 1 is
+  // drawn, test_layer_drawing.cpp).
   TempFile file("layers.mta");
   BuildParams p;
   p.atlasSize = 64;
@@ -165,27 +166,35 @@ TEST(PagingPolicy, NoBlockOfALayerThatNothingDrawsIsEverRequestedOrLoaded) {
     return bi.kind == BlockKind::Atlas ? bi.layer != 0 : layer1Only.count(bi.node) != 0;
   };
 
-  TreeRenderer r(f, unlimited(256));
+  RendererOptions o = unlimited(256);
+  o.residency.drawnLayers = LayerMask(1);
+  Residency residency(f, o.residency);
+  const BlockIndex layer0 = buildBlockIndex(m, LayerMask(1));
+  const RuntimeGeometry g = buildRuntimeGeometry(m);
+  TreeRenderer viewer(f, o);  // for its ViewParams only
   const std::vector<Camera> cams = wallPath(m, 4.0, 4.0, 20.0, 0.4, 3.0);
   uint64_t loaded = 0, originalsDrawn = 0;
-  for (const Camera& c : cams) {
-    const FrameResult fr = r.renderFrame(c);
-    for (uint32_t b : fr.residency.loadOrder) EXPECT_FALSE(layer1Block(b)) << "frame " << fr.frame << " loaded block " << b;
-    loaded += fr.residency.loadOrder.size();
-    originalsDrawn += fr.plan.originalLeaves;
-    EXPECT_EQ(fr.residency.neededMissing, 0u);
+  for (size_t i = 0; i < cams.size(); ++i) {
+    const ViewContext ctx = makeViewContext(m, viewer.view(cams[i]));
+    const ResidencyFrameStats st = residency.update(usagePriorities(m, layer0, ctx));
+    for (uint32_t b : st.loadOrder) EXPECT_FALSE(layer1Block(b)) << "frame " << i << " loaded block " << b;
+    loaded += st.loadOrder.size();
+    EXPECT_EQ(st.neededMissing, 0u);
+    originalsDrawn += planFrame(m, g, layer0, ctx, RenderMode::AtlasTree, [&](uint32_t b) { return residency.resident(b); })
+                          .originalLeaves;
   }
   EXPECT_GT(loaded, 0u);
   EXPECT_GT(originalsDrawn, 0u) << "the path should come close enough to draw original textures";
-  for (uint32_t b = 0; b < m.blocks.size(); ++b) EXPECT_FALSE(layer1Block(b) && r.residency()->resident(b)) << "block " << b;
+  for (uint32_t b = 0; b < m.blocks.size(); ++b) EXPECT_FALSE(layer1Block(b) && residency.resident(b)) << "block " << b;
 
-  // The same views with layer 1 drawn too request its blocks: the set follows the layers drawn.
-  const BlockIndex both = buildBlockIndex(m, LayerMask(3));
-  ViewParams v = r.view(cams[20]);
-  const std::vector<BlockPriority> pr = usagePriorities(m, both, makeViewContext(m, v));
+  // The renderer, which draws layer 1 too (kRecordedLayers), requests and loads its blocks over the same
+  // views: the set follows the layers drawn.
+  ASSERT_EQ(kRecordedLayers & LayerMask(2), LayerMask(2));
+  TreeRenderer r(f, unlimited(256));
   bool atlas1 = false, original1 = false;
-  for (uint32_t b = 0; b < m.blocks.size(); ++b)
-    if (pr[b].usage != Usage::Unused && layer1Block(b)) (m.blocks[b].kind == BlockKind::Atlas ? atlas1 : original1) = true;
+  for (const Camera& c : cams)
+    for (uint32_t b : r.renderFrame(c).residency.loadOrder)
+      if (layer1Block(b)) (m.blocks[b].kind == BlockKind::Atlas ? atlas1 : original1) = true;
   EXPECT_TRUE(atlas1);
   EXPECT_TRUE(original1);
 }

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "base/sha256.h"
+#include "raster/serialize.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/frame_job.h"
 #include "tools/cli/mta_path_run.h"
@@ -30,6 +31,11 @@ nlohmann::json runMtaRender(const PathRunArgs& a) {
       const std::string name = frameName("frame", i);
       writeFramePng((fs::path(a.out) / name).string(), o.width, o.height, r.image);
       j["image"] = name;
+      if (a.recordFrames) {
+        const std::string tframe = fs::path(name).replace_extension(".tframe").string();
+        writeFrame(renderer.lastList(), (fs::path(a.out) / tframe).string());
+        j["tframe"] = tframe;
+      }
     }
     rows.push_back(j);
     progress.tick(i + 1, std::to_string(r.counters.texture_state_changes) + " texture changes, " +
@@ -103,6 +109,9 @@ void addMtaRenderCommand(CLI::App* mtaCmd) {
                 "(texture_binds, draw_calls, bytes_resident, ...) and plot.png; prints a summary");
   render->add_option("tree", ra->input, "Paging file (.mta)")->required();
   addPathRunOptions(render, *ra, true);
+  render->add_flag("--record", ra->recordFrames,
+                   "Also write every saved frame's command list as a .tframe next to its image, for `tessera crosscheck` "
+                   "(it uploads every texture the frame binds, so a file holds the frame's atlases and originals)");
   render->callback([ra] { std::printf("%s\n", runMtaRender(*ra).dump(2).c_str()); });
 }
 

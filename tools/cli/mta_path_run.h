@@ -31,6 +31,7 @@ struct PathRunArgs {
   bool noGroupBinds = false;  // planFrame's leaf-by-leaf draw order (RendererOptions::groupBinds off)
   int threads = 0;
   uint32_t saveEvery = 25;    // 0 = no frame images
+  bool recordFrames = false;  // mta render: a .tframe next to every saved frame image (--record)
   bool quiet = false;
   double buildDMin = 0.0;     // texel with a model: d_min of the build (0 = D / 72)
   ResourceLimits limits;      // texel with a model: the model budgets (--model-budget-*)
