@@ -67,9 +67,23 @@ void decodeAlpha(const uint8_t* p, uint8_t* out) {
   for (uint32_t t = 0; t < 16; ++t) out[4 * t + 3] = uint8_t(values[(codes >> (3 * t)) & 7u]);
 }
 
+uint32_t colourCodes(const uint8_t* p) {
+  return uint32_t(p[4]) | (uint32_t(p[5]) << 8) | (uint32_t(p[6]) << 16) | (uint32_t(p[7]) << 24);
+}
+
+void checkLevel(const char* who, BcFormat f, uint32_t w, uint32_t h, std::span<const uint8_t> blocks) {
+  if (f != BcFormat::BC1 && f != BcFormat::BC3)
+    throw Error(std::string(who) + ": block format " + std::to_string(int(f)) + " is neither BC1 (1) nor BC3 (2)");
+  if (w == 0 || h == 0 || blocks.size() != bcLevelBytes(f, w, h))
+    throw Error(std::string(who) + ": " + bcFormatName(f) + " level of " + std::to_string(w) + "x" + std::to_string(h) +
+                " needs " + std::to_string(bcLevelBytes(f, w, h)) + " bytes, got " + std::to_string(blocks.size()));
+}
+
 }  // namespace
 
-const char* bcFormatName(BcFormat f) { return f == BcFormat::BC1 ? "BC1" : f == BcFormat::BC3 ? "BC3" : "?"; }
+const char* bcFormatName(BcFormat f) {
+  return f == BcFormat::BC1 ? "BC1" : f == BcFormat::BC3 ? "BC3" : f == BcFormat::None ? "none" : "?";
+}
 
 void decodeBc1Block(const uint8_t* block, uint8_t* out) { decodeColour(block, true, out); }
 
@@ -79,12 +93,7 @@ void decodeBc3Block(const uint8_t* block, uint8_t* out) {
 }
 
 std::vector<uint8_t> decodeBcLevel(BcFormat f, uint32_t w, uint32_t h, std::span<const uint8_t> blocks) {
-  if (f != BcFormat::BC1 && f != BcFormat::BC3)
-    throw Error("decodeBcLevel: block format " + std::to_string(int(f)) + " is neither BC1 (1) nor BC3 (2)");
-  if (w == 0 || h == 0 || blocks.size() != bcLevelBytes(f, w, h))
-    throw Error(std::string("decodeBcLevel: ") + bcFormatName(f) + " level of " + std::to_string(w) + "x" +
-                std::to_string(h) + " needs " + std::to_string(bcLevelBytes(f, w, h)) + " bytes, got " +
-                std::to_string(blocks.size()));
+  checkLevel("decodeBcLevel", f, w, h, blocks);
   std::vector<uint8_t> out(size_t(w) * h * 4);
   const uint32_t bw = (w + 3) / 4, bh = (h + 3) / 4, bytes = bcBlockBytes(f);
   uint8_t texels[64];
@@ -96,6 +105,35 @@ std::vector<uint8_t> decodeBcLevel(BcFormat f, uint32_t w, uint32_t h, std::span
       for (uint32_t y = 0; y < 4 && 4 * by + y < h; ++y)
         for (uint32_t x = 0; x < 4 && 4 * bx + x < w; ++x)
           std::memcpy(out.data() + ((size_t(4 * by + y) * w) + 4 * bx + x) * 4, texels + 4 * (4 * y + x), 4);
+    }
+  return out;
+}
+
+std::vector<uint8_t> bcInterpolantChannels(BcFormat f, uint32_t w, uint32_t h, std::span<const uint8_t> blocks) {
+  checkLevel("bcInterpolantChannels", f, w, h, blocks);
+  std::vector<uint8_t> out(size_t(w) * h, 0);
+  const uint32_t bw = (w + 3) / 4, bh = (h + 3) / 4, bytes = bcBlockBytes(f);
+  for (uint32_t by = 0; by < bh; ++by)
+    for (uint32_t bx = 0; bx < bw; ++bx) {
+      const uint8_t* block = blocks.data() + (size_t(by) * bw + bx) * bytes;
+      const uint8_t* colour = f == BcFormat::BC3 ? block + 8 : block;
+      const uint16_t c0 = uint16_t(colour[0] | (colour[1] << 8)), c1 = uint16_t(colour[2] | (colour[3] << 8));
+      const bool four = f == BcFormat::BC3 || c0 > c1;
+      const uint32_t codes = colourCodes(colour);
+      uint64_t alphaCodes = 0;
+      if (f == BcFormat::BC3)
+        for (int i = 0; i < 6; ++i) alphaCodes |= uint64_t(block[2 + i]) << (8 * i);
+      const bool eightAlphas = f == BcFormat::BC3 && block[0] > block[1];
+      for (uint32_t y = 0; y < 4 && 4 * by + y < h; ++y)
+        for (uint32_t x = 0; x < 4 && 4 * bx + x < w; ++x) {
+          const uint32_t t = 4 * y + x, code = (codes >> (2 * t)) & 3u;
+          uint8_t mask = (code == 2 || (code == 3 && four)) ? 7 : 0;
+          if (f == BcFormat::BC3) {
+            const uint32_t a = uint32_t(alphaCodes >> (3 * t)) & 7u;
+            if (a >= 2 && (eightAlphas || a <= 5)) mask |= 8;
+          }
+          out[size_t(4 * by + y) * w + 4 * bx + x] = mask;
+        }
     }
   return out;
 }

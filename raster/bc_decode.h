@@ -32,8 +32,9 @@
 
 namespace tessera {
 
-// The two block formats the project stores. The values are on-disk tags (.tframe, .mta): append only.
-enum class BcFormat : uint8_t { BC1 = 1, BC3 = 2 };
+// The two block formats the project stores, and None for uncompressed texels (TextureDesc::compression).
+// The values are on-disk tags (.tframe, .mta): append only.
+enum class BcFormat : uint8_t { None = 0, BC1 = 1, BC3 = 2, Count };
 const char* bcFormatName(BcFormat f);
 
 constexpr uint32_t bcBlockBytes(BcFormat f) { return f == BcFormat::BC1 ? 8u : 16u; }
@@ -49,5 +50,12 @@ void decodeBc3Block(const uint8_t* block, uint8_t* out);
 // Decodes a w x h level into tightly packed RGBA8 rows in the blocks' row order.
 // Precondition: blocks.size() == bcLevelBytes(f, w, h) (Error otherwise), w and h >= 1.
 std::vector<uint8_t> decodeBcLevel(BcFormat f, uint32_t w, uint32_t h, std::span<const uint8_t> blocks);
+
+// Which channels of each texel of that level are interpolants, whose rounding the extension leaves free
+// (the cross-check widens exactly those by one unit, BC_INTERPOLANT): per texel a mask, bits 0..2 for RGB
+// (colour codes 2 and 3 of the four-colour rule, code 2 of the three-colour rule), bit 3 for a BC3 alpha
+// code 2..7 (2..5 in the six-value mode). Endpoints, black and the fixed alphas 0 and 255 are exact.
+// Same precondition and layout as decodeBcLevel.
+std::vector<uint8_t> bcInterpolantChannels(BcFormat f, uint32_t w, uint32_t h, std::span<const uint8_t> blocks);
 
 }  // namespace tessera
