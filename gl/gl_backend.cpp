@@ -158,7 +158,16 @@ struct GlBackend::Impl {
 
   // --- commands ---------------------------------------------------------------------------------
   void apply(const CommandList&, const CreateTexture& c) { res.createTexture(c.id, c.desc); }
-  void apply(const CommandList& l, const UploadTexture& c) { res.uploadTexture(c, l.bytes(c.data)); }
+  void apply(const CommandList& l, const UploadTexture& c) {
+    if (options.mutation) {
+      const GlTexture* t = res.texture(c.id);
+      if (t) {
+        const std::vector<uint8_t> corrupted = options.mutation->applyToUpload(t->desc, l.bytes(c.data));
+        if (!corrupted.empty()) return res.uploadTexture(c, corrupted);
+      }
+    }
+    res.uploadTexture(c, l.bytes(c.data));
+  }
   void apply(const CommandList&, const CreateBuffer& c) { res.createBuffer(c.id, c.size); }
   void apply(const CommandList& l, const UploadBuffer& c) { res.uploadBuffer(c, l.bytes(c.data)); }
   void apply(const CommandList&, const CreateSampler& c) {
