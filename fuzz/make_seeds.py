@@ -48,7 +48,8 @@ def write(path, data):
 # --- tframe -------------------------------------------------------------------------------------------
 def tframe_seeds(tessera, out, tmp):
     os.makedirs(out, exist_ok=True)
-    for scene in ["depth", "wrap_filter", "blend", "clip_planes", "fill_fan", "layered_target"]:
+    # s3tc_blocks: a version-2 file (CreateTexture with desc.compression, S3TC blocks in the uploads).
+    for scene in ["depth", "wrap_filter", "blend", "clip_planes", "fill_fan", "layered_target", "s3tc_blocks"]:
         subprocess.run([tessera, "render", scene, "--record", os.path.join(out, scene + ".tframe"), "-o",
                         os.path.join(tmp, scene + ".png")], check=True, stdout=subprocess.DEVNULL)
     # An empty frame: header only, 0 commands, 0 blob bytes, nextId 1 (valid).
@@ -56,7 +57,10 @@ def tframe_seeds(tessera, out, tmp):
     write(os.path.join(out, "empty-frame.tframe"), empty)
     depth = open(os.path.join(out, "depth.tframe"), "rb").read()
     write(os.path.join(out, "bad-truncated-in-command.tframe"), depth[:150])
+    # Version 2 is known since S3TC textures, so this one is bad in another way now: version-1 CreateTexture
+    # payloads (26 bytes) under a version-2 header (27). bad-version-3 is the unknown version.
     write(os.path.join(out, "bad-version-2.tframe"), depth[:8] + struct.pack("<I", 2) + depth[12:])
+    write(os.path.join(out, "bad-version-3.tframe"), depth[:8] + struct.pack("<I", 3) + depth[12:])
     write(os.path.join(out, "bad-header-only-magic.tframe"), b"TSFRAME\x00")
 
 

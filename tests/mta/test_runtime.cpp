@@ -83,6 +83,26 @@ TEST(Residency, CapacityIsNeverExceededAndTheRootAtlasStaysResident) {
   EXPECT_GT(evicted, 0u) << "the capacity should be tight enough to force evictions";
 }
 
+TEST(Residency, DecodedBytesResidentHoldEveryChainTheFrameUploadsAndOnlyThoseOnTheFirstFrame) {
+  const PagingFile& f = *fixture().tree;
+  LoadBudget b;
+  b.kind = LoadBudget::Kind::Blocks;
+  b.perFrame = 2;
+  TreeRenderer r(f, options(atlasBytes() * 7, b));
+  bool first = true;
+  for (const Camera& c : path()) {
+    const FrameResult fr = r.renderFrame(c);
+    // Every texture a frame draws is uploaded once, from a chain the cache holds (the untextured draws'
+    // 1 x 1 white texture, 4 bytes, is the one upload that is not a cached chain). Before the first frame
+    // the cache is empty, so then the cached chains are exactly the uploaded ones.
+    const uint64_t uploaded = fr.counters.texture_bytes_uploaded;
+    ASSERT_GT(uploaded, 4u) << "frame " << fr.frame;
+    EXPECT_GE(fr.decodedBytesResident + 4, uploaded) << "frame " << fr.frame;
+    if (first) EXPECT_LE(fr.decodedBytesResident, uploaded) << "frame " << fr.frame;
+    first = false;
+  }
+}
+
 TEST(Residency, BlocksAreLoadedInPriorityOrderWithinEachFrame) {
   const PagingFile& f = *fixture().tree;
   LoadBudget b;
