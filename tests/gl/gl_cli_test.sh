@@ -74,6 +74,29 @@ case "$case_name" in
       --gl-driver softpipe --no-bisect
     [ "$(json_field out.json "['unexplained']")" = "0" ] || fail "the silhouette tie is unexplained on softpipe"
     ;;
+  a_texel_from_a_foreign_tile_is_caught_on_softpipe_and_covered_only_by_its_entry)
+    # softpipe's texture tile cache aliases two tiles of one bilinear footprint that wraps in t and
+    # crosses a tile column (docs/softpipe-tex-tile-cache.md). The reproducer's 64x256 texture is 96
+    # everywhere except texel (0, 31), which no footprint of a correct LINEAR REPEAT lookup reaches
+    # here (GL 4.6 section 8.14.2), so every pixel must be exactly 96: llvmpipe is. softpipe reads
+    # texel (0, 31) at 3 pixels; the entry softpipe-tex-tile-cache-alias covers exactly those.
+    repro="$here/../expectations/repro/softpipe-tex-tile-cache-alias.tframe"
+    rc=0; "$tessera" crosscheck "$repro" --gl-driver softpipe --no-bisect --no-expectations > out.json 2> err.txt || rc=$?
+    if [ "$rc" != 0 ] && grep -qF "softpipe was asked for" err.txt; then echo "SKIP: no softpipe: $(cat err.txt)"; exit 77; fi
+    [ "$rc" = 1 ] || fail "without expectations the alias must fail the verdict (exit $rc)"
+    [ "$(json_field out.json "['unexplained']")" = "3" ] || fail "expected 3 unexplained pixels"
+    python3 - out.json <<'PY' || fail "unexplained pixels must be exactly the three aliased lookups, each exactly 96 in the oracle"
+import json, sys
+img = json.load(open(sys.argv[1]))['images'][0]
+got = sorted((p['x'], p['y']) for p in img['first_unexplained'])
+assert got == [(638, 69), (638, 254), (639, 254)], got
+assert all(p['oracle'][:3] == [96.0, 96.0, 96.0] and not p['classes'] for p in img['first_unexplained'])
+PY
+    softpipe_or_skip "$tessera" crosscheck "$repro" --gl-driver softpipe --no-bisect
+    [ "$(json_field out.json "['unexplained']")" = "0" ] || fail "the entry must cover the alias"
+    [ "$(json_field out.json "['expected_deviation']")" = "3" ] || fail "the entry must cover exactly 3 pixels"
+    "$tessera" crosscheck "$repro" --no-bisect --no-expectations > out.json || fail "llvmpipe must draw 96 everywhere"
+    ;;
   crosscheck_on_softpipe_records_the_driver_and_the_gl_path)
     softpipe_or_skip "$tessera" crosscheck fill_fan --gl-driver softpipe --report r
     [ "$(json_field out.json "['gl_info']['driver']")" = "softpipe" ] || fail "driver not recorded"
