@@ -46,6 +46,29 @@ TEST(PagingFileVersion, AVersion1FileIsRefusedWithAMessageToRebuildIt) {
   EXPECT_NE(m.find("rebuild it with `tessera mta build`"), std::string::npos) << m;
 }
 
+TEST(PagingFileVersion, AVersion2FileIsRefusedWithAMessageToRebuildIt) {
+  TempFile old("v2.mta");
+  std::vector<uint8_t> bytes = testing::readBytes(good().file.path);
+  const uint32_t two = 2;
+  std::memcpy(bytes.data() + 8, &two, 4);
+  testing::fixHeader(bytes);
+  testing::writeBytes(old.path, bytes);
+  const std::string m = errorOf(old.path);
+  EXPECT_EQ(m.rfind(old.path + ": format version 2: its header does not record the block encoding", 0), 0u) << m;
+  EXPECT_NE(m.find("rebuild it with `tessera mta build`"), std::string::npos) << m;
+}
+
+TEST(PagingFileVersion, AnUnknownBlockEncodingInTheHeaderIsRefused) {
+  TempFile bad("encoding.mta");
+  std::vector<uint8_t> bytes = testing::readBytes(good().file.path);
+  const uint32_t two = 2;  // 0 raw and 1 S3TC are the only encodings
+  std::memcpy(bytes.data() + 72, &two, 4);
+  testing::fixHeader(bytes);
+  testing::writeBytes(bad.path, bytes);
+  const std::string m = errorOf(bad.path);
+  EXPECT_EQ(m, bad.path + ": header.encoding: 2 is not 0 (raw) or 1 (S3TC)") << m;
+}
+
 TEST(PagingFileVersion, TwoImagesInOneOriginalBlockAreRefused) {
   // The version 1 layout: the first two images packed into the first original block. Blocks 0 and 1
   // hold one image each and follow each other without padding, so merging them into block 0 (and
