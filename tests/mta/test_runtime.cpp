@@ -2,11 +2,15 @@
 // traversal's fallback (Figure 30), the comparison runs, determinism, and the texel guarantee.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <set>
+#include <variant>
 
 #include "mta/build.h"
 #include "mta/texel_ratio.h"
 #include "mta/tree_renderer.h"
+#include "raster/bc_decode.h"
+#include "raster/cpu_backend.h"
 #include "base/sha256.h"
 #include "mta_test_scene.h"
 #include "wall_tree_file.h"
@@ -193,6 +197,64 @@ TEST(Residency, CapacityAndBytesResidentCountCompressedBlockBytes) {
   EXPECT_EQ(fr.bytesResident, atlasBytes());
   EXPECT_EQ(fr.blocksResident, 1u);
   EXPECT_LT(atlasBytes(), uint64_t(f.meta().params.atlasSize) * f.meta().params.atlasSize * 3 / 4);
+}
+
+// The list `cl` with every S3TC texture replaced by its decoded RGBA8 levels (raster/bc_decode.h called
+// here, outside the backend): the textures the oracle should have sampled. Every command that carries blob
+// bytes (texture, buffer and uniform uploads) is copied with its bytes.
+CommandList withDecodedTextures(const CommandList& cl) {
+  CommandList out;
+  std::map<ResourceId, TextureDesc> compressed;
+  for (const Command& c : cl.commands()) {
+    if (const auto* ct = std::get_if<CreateTexture>(&c); ct && ct->desc.compression != BcFormat::None) {
+      compressed[ct->id] = ct->desc;
+      CreateTexture plain = *ct;
+      plain.desc.compression = BcFormat::None;
+      out.appendRaw(plain);
+    } else if (const auto* up = std::get_if<UploadTexture>(&c)) {
+      UploadTexture u = *up;
+      const auto it = compressed.find(up->id);
+      if (it == compressed.end()) {
+        u.data = out.appendBlob(cl.bytes(up->data));
+      } else {
+        const TextureDesc& d = it->second;
+        u.data = out.appendBlob(decodeBcLevel(d.compression, levelWidth(d, up->level), levelHeight(d, up->level),
+                                              cl.bytes(up->data)));
+      }
+      out.appendRaw(u);
+    } else if (const auto* ub = std::get_if<UploadBuffer>(&c)) {
+      UploadBuffer u = *ub;
+      u.data = out.appendBlob(cl.bytes(ub->data));
+      out.appendRaw(u);
+    } else if (const auto* su = std::get_if<SetUniforms>(&c)) {
+      SetUniforms u = *su;
+      u.data = out.appendBlob(cl.bytes(su->data));
+      out.appendRaw(u);
+    } else {
+      out.appendRaw(c);
+    }
+  }
+  out.setNextId(cl.nextId());
+  return out;
+}
+
+// The S3TC frames upload compressed textures, and what the oracle draws from them is exactly what it draws
+// from the same textures decoded beforehand: decoding is the only step between the blocks and sampling.
+TEST(TreeRenderer, ACompressedFrameEqualsTheFrameDrawnFromTheSameTreesDecodedTextures) {
+  TreeRenderer r(*fixture().tree, everythingResident());
+  size_t compared = 0;
+  for (const Camera& c : path()) {
+    const FrameResult fr = r.renderFrame(c);
+    size_t compressedTextures = 0;
+    for (const Command& cmd : r.lastList().commands())
+      if (const auto* ct = std::get_if<CreateTexture>(&cmd)) compressedTextures += ct->desc.compression != BcFormat::None;
+    ASSERT_GT(compressedTextures, 0u) << "frame " << fr.frame;
+    CpuBackend oracle;
+    oracle.execute(withDecodedTextures(r.lastList()), "decoded");
+    EXPECT_TRUE(oracle.texture(oracle.presented().at(0).texture)->levels[0] == fr.image) << "frame " << fr.frame;
+    ++compared;
+  }
+  EXPECT_GT(compared, 0u);
 }
 
 // Same blocks resident (a block budget and room for all): the S3TC run's cached chains decode to exactly
