@@ -1,6 +1,7 @@
-// Paging file format version 2 (docs/mta-format.md, "Versions"): every original image starts blocks of its
-// own. A version 1 file is refused with a message that says to rebuild it, and a file whose metadata
-// packs two images into one block is refused naming the piece, though its checksums are valid.
+// Paging file format versions (docs/mta-format.md, "Versions"): since version 2 every original image starts
+// blocks of its own; version 3 records the block encoding (raw or S3TC) in the header. Version 1 and 2 files
+// are refused with a message that says to rebuild them, an unknown encoding is refused, and a file whose
+// metadata packs two images into one block is refused naming the piece, though its checksums are valid.
 #include <gtest/gtest.h>
 
 #include <cstring>
