@@ -48,7 +48,8 @@ def write(path, data):
 # --- tframe -------------------------------------------------------------------------------------------
 def tframe_seeds(tessera, out, tmp):
     os.makedirs(out, exist_ok=True)
-    for scene in ["depth", "wrap_filter", "blend", "clip_planes", "fill_fan", "layered_target"]:
+    # s3tc_blocks: a version-2 file (CreateTexture with desc.compression, S3TC blocks in the uploads).
+    for scene in ["depth", "wrap_filter", "blend", "clip_planes", "fill_fan", "layered_target", "s3tc_blocks"]:
         subprocess.run([tessera, "render", scene, "--record", os.path.join(out, scene + ".tframe"), "-o",
                         os.path.join(tmp, scene + ".png")], check=True, stdout=subprocess.DEVNULL)
     # An empty frame: header only, 0 commands, 0 blob bytes, nextId 1 (valid).
@@ -56,7 +57,10 @@ def tframe_seeds(tessera, out, tmp):
     write(os.path.join(out, "empty-frame.tframe"), empty)
     depth = open(os.path.join(out, "depth.tframe"), "rb").read()
     write(os.path.join(out, "bad-truncated-in-command.tframe"), depth[:150])
+    # Version 2 is known since S3TC textures, so this one is bad in another way now: version-1 CreateTexture
+    # payloads (26 bytes) under a version-2 header (27). bad-version-3 is the unknown version.
     write(os.path.join(out, "bad-version-2.tframe"), depth[:8] + struct.pack("<I", 2) + depth[12:])
+    write(os.path.join(out, "bad-version-3.tframe"), depth[:8] + struct.pack("<I", 3) + depth[12:])
     write(os.path.join(out, "bad-header-only-magic.tframe"), b"TSFRAME\x00")
 
 
@@ -83,7 +87,9 @@ def mta_seeds(tessera, out, tmp):
     tri = "mtllib two.mtl\nv 0 0 0\nv 10 0 0\nv 10 10 0\nv 20 0 0\nv 30 0 0\nv 30 10 0\nvt 0 0\nvt 1 0\nvt 1 1\n"
     write(os.path.join(scene, "two.obj"), tri + "usemtl a\nf 1/1 2/2 3/3\nusemtl b\nf 4/1 5/2 6/3\n")
     build(os.path.join(scene, "two.obj"), "two-triangles-root-and-two-leaves.mta", "--d-min", "5")
-    # 3. One triangle with an RGBA texture: an RGBA tree (4 bytes per atlas texel).
+    #    The same tree with raw blocks (`--raw`): row pieces and raw atlases (the others store S3TC chains).
+    build(os.path.join(scene, "two.obj"), "two-triangles-raw-blocks.mta", "--d-min", "5", "--raw")
+    # 3. One triangle with an RGBA texture: an RGBA tree (BC3 blocks).
     write(os.path.join(scene, "rgba.obj"), tri + "usemtl c\nf 1/1 2/2 3/3\n")
     build(os.path.join(scene, "rgba.obj"), "one-triangle-rgba-tree.mta", "--d-min", "5")
     # No malformed .mta seeds yet: PagingFile leaks its descriptor on every file it rejects, which the mta

@@ -158,7 +158,16 @@ struct GlBackend::Impl {
 
   // --- commands ---------------------------------------------------------------------------------
   void apply(const CommandList&, const CreateTexture& c) { res.createTexture(c.id, c.desc); }
-  void apply(const CommandList& l, const UploadTexture& c) { res.uploadTexture(c, l.bytes(c.data)); }
+  void apply(const CommandList& l, const UploadTexture& c) {
+    if (options.mutation) {
+      const GlTexture* t = res.texture(c.id);
+      if (t) {
+        const std::vector<uint8_t> corrupted = options.mutation->applyToUpload(t->desc, l.bytes(c.data));
+        if (!corrupted.empty()) return res.uploadTexture(c, corrupted);
+      }
+    }
+    res.uploadTexture(c, l.bytes(c.data));
+  }
   void apply(const CommandList&, const CreateBuffer& c) { res.createBuffer(c.id, c.size); }
   void apply(const CommandList& l, const UploadBuffer& c) { res.uploadBuffer(c, l.bytes(c.data)); }
   void apply(const CommandList&, const CreateSampler& c) {
@@ -489,7 +498,9 @@ std::unique_ptr<GlBackend> GlBackend::create(const GlOptions& options) {
   ctx.info().glslExtensions = dialect.extensions();
   ctx.info().glslFallbacks = dialect.fallbacks();
   m.compiler.configure(dialect, m.dsa, m.dsa || ctx.hasExtension("GL_ARB_program_interface_query"));
-  m.res.configure(m.dsa);
+  // S3TC is an extension (GL 4.6 core has no S3TC formats); Mesa exposes it on llvmpipe and softpipe. Without
+  // it a compressed texture is refused when the frame creates one (gl_resources.cpp), never decoded here.
+  m.res.configure(m.dsa, ctx.hasExtension("GL_EXT_texture_compression_s3tc"), ctx.info().renderer);
   m.fbos.configure(m.dsa);
   // KHR_debug is GL 4.3; a 3.3 context without it still checks glGetError after every command.
   if (options.debug && (m.dsa || ctx.hasExtension("GL_KHR_debug"))) m.debugLog.install();

@@ -1,6 +1,7 @@
 #include "gl/gl_mutation.h"
 
 #include <type_traits>
+#include <utility>
 
 #include "base/error.h"
 #include "gl/gl_api.h"
@@ -268,6 +269,14 @@ std::vector<Mutation> build() {
        "",
        {},
        StateFault::BorderColorIgnored});
+  add({"bc1_endpoints_swapped",
+       "a driver that reads the two RGB565 endpoints of a DXT1 block in the wrong order",
+       "state",
+       "every BC1 block is uploaded with color0 and color1 exchanged and its codes unchanged: codes 0 and 1 swap "
+       "colours, and a four-colour block (color0 > color1) becomes a three-colour one (midpoint and black)",
+       "",
+       {},
+       StateFault::Bc1EndpointsSwapped});
   add({"filter_nearest_linear",
        "texel filters NEAREST and LINEAR exchanged",
        "state",
@@ -478,6 +487,16 @@ SamplerState Mutation::applyToState(const SamplerState& in) const {
       break;
   }
   return s;
+}
+
+std::vector<uint8_t> Mutation::applyToUpload(const TextureDesc& d, std::span<const uint8_t> bytes) const {
+  if (state != StateFault::Bc1EndpointsSwapped || d.compression != BcFormat::BC1) return {};
+  std::vector<uint8_t> out(bytes.begin(), bytes.end());
+  for (size_t b = 0; b + 8 <= out.size(); b += 8) {
+    std::swap(out[b + 0], out[b + 2]);
+    std::swap(out[b + 1], out[b + 3]);
+  }
+  return out;
 }
 
 }  // namespace tessera::gl

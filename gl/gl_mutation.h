@@ -3,16 +3,18 @@
 // before the twin compiles) or to the GL state the backend sets, so that `tessera mutants` can show
 // which of them the cross-check's verdict catches.
 //
-// Implements: the Mutation record, the catalogue, and the two hooks the backend calls when
+// Implements: the Mutation record, the catalogue, and the hooks the backend calls when
 // GlOptions::mutation is set: applyToSource() on a twin's text before its stages compile
-// (gl_programs.cpp) and applyToState() after each command has set its GL state and on every sampler
-// it creates (gl_backend.cpp). With no mutation the backend never calls either hook, so it behaves
-// exactly as without this file.
+// (gl_programs.cpp), applyToState() after each command has set its GL state and on every sampler
+// it creates, and applyToUpload() on the bytes of every texture upload (gl_backend.cpp). With no
+// mutation the backend calls no hook, so it behaves exactly as without this file.
 // Does not implement: running mutants or judging them (verify/mutants.h).
 //
 // Internal to gl/ and the mutation runner; a mutation never reaches a normal render.
 #pragma once
 
+#include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -44,6 +46,7 @@ enum class StateFault {
   MipmapLinearNearest,    // sampler: *_MIPMAP_LINEAR -> *_MIPMAP_NEAREST
   SamplerLodBiasIgnored,  // sampler: TEXTURE_LOD_BIAS 0
   BorderColorIgnored,     // sampler: border colour (0, 0, 0, 0)
+  Bc1EndpointsSwapped,    // upload: every BC1 block's color0 and color1 exchanged (codes unchanged)
 };
 
 // Uniforms a mutated twin may declare; applyToState sets them on the current program after every
@@ -73,6 +76,9 @@ struct Mutation {
   void applyToState(const Command& c) const;
   // The sampler state the backend gives GL for a CreateSampler.
   SamplerState applyToState(const SamplerState& s) const;
+  // The bytes the backend gives GL for an UploadTexture of a texture described by `d`: empty to upload
+  // `bytes` unchanged, else the corrupted copy.
+  std::vector<uint8_t> applyToUpload(const TextureDesc& d, std::span<const uint8_t> bytes) const;
 };
 
 // Every mutant, in a fixed order (the report's rows).

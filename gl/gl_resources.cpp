@@ -2,10 +2,24 @@
 
 #include <algorithm>
 #include <cstring>
+#include <string>
+
+#include "base/error.h"
 
 #include "gl/gl_enums.h"
 
 namespace tessera::gl {
+
+namespace {
+
+// EXT_texture_compression_s3tc's tokens (glcorearb.h has only core enums).
+constexpr GLenum kCompressedRgbDxt1 = 0x83F0;   // GL_COMPRESSED_RGB_S3TC_DXT1_EXT
+constexpr GLenum kCompressedRgbaDxt5 = 0x83F3;  // GL_COMPRESSED_RGBA_S3TC_DXT5_EXT
+
+// The RGB variant of DXT1: its three-colour code 3 is opaque black, which the oracle decodes (spec-choices C2).
+GLenum compressedInternal(BcFormat f) { return f == BcFormat::BC1 ? kCompressedRgbDxt1 : kCompressedRgbaDxt5; }
+
+}  // namespace
 
 void FrameResources::grow(ResourceId id) {
   const size_t n = size_t(id) + 1;
@@ -27,6 +41,10 @@ void FrameResources::createTexture(ResourceId id, const TextureDesc& d) {
   t.desc = d;
   t.target = glTarget(d.kind);
   const GlFormat f = glFormat(d.format);
+  if (d.compression != BcFormat::None) {
+    createCompressedTexture(id, t);
+    return;
+  }
   if (!dsa_) {
     createTextureBound(t, f);
     return;
@@ -75,8 +93,52 @@ void FrameResources::createTextureBound(GlTexture& t, const GlFormat& f) {
   glTexParameteri(t.target, GL_TEXTURE_MAX_LEVEL, GLint(d.levels) - 1);
 }
 
+// A validated compressed texture is Tex2D (validate.cpp). Every level starts as zero blocks: a compressed
+// format cannot be cleared (glClearTexImage refuses it), and zero blocks are what the oracle's storage holds
+// decoded (TextureData).
+void FrameResources::createCompressedTexture(ResourceId id, GlTexture& t) {
+  const TextureDesc& d = t.desc;
+  if (!s3tc_)
+    throw Error("GL backend: texture " + std::to_string(id) + " is " + bcFormatName(d.compression) +
+                "-compressed, but this context (" + renderer_ +
+                ") lacks GL_EXT_texture_compression_s3tc, so it cannot upload S3TC blocks as they are; "
+                "decoding them here would compare the oracle with itself (docs/gl-backend.md)");
+  const GLenum internal = compressedInternal(d.compression);
+  const GLsizei levels = GLsizei(d.levels);
+  if (dsa_) {
+    glCreateTextures(GL_TEXTURE_2D, 1, &t.name);
+    glTextureStorage2D(t.name, levels, internal, GLsizei(d.width), GLsizei(d.height));
+    glTextureParameteri(t.name, GL_TEXTURE_MAX_LEVEL, levels - 1);
+  } else {
+    glGenTextures(1, &t.name);
+    glBindTexture(GL_TEXTURE_2D, t.name);  // kScratchUnit is the active unit between commands
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, levels - 1);
+  }
+  for (GLint l = 0; l < levels; ++l) {
+    const GLsizei w = GLsizei(levelWidth(d, uint32_t(l))), h = GLsizei(levelHeight(d, uint32_t(l)));
+    const GLsizei bytes = GLsizei(uploadBytes(d, uint32_t(l)));
+    if (dsa_)
+      glCompressedTextureSubImage2D(t.name, l, 0, 0, w, h, internal, bytes, zeros(size_t(bytes)));
+    else
+      glCompressedTexImage2D(GL_TEXTURE_2D, l, internal, w, h, 0, bytes, zeros(size_t(bytes)));
+  }
+}
+
 void FrameResources::uploadTexture(const UploadTexture& u, std::span<const uint8_t> texels) {
   const GlTexture& t = textures_[u.id];
+  if (t.desc.compression != BcFormat::None) {
+    // The blocks as recorded: GL decodes them by its own rounding, which the cross-check bounds (BC_INTERPOLANT).
+    const GLenum internal = compressedInternal(t.desc.compression);
+    const GLsizei w = GLsizei(levelWidth(t.desc, u.level)), h = GLsizei(levelHeight(t.desc, u.level));
+    if (dsa_) {
+      glCompressedTextureSubImage2D(t.name, GLint(u.level), 0, 0, w, h, internal, GLsizei(texels.size()), texels.data());
+    } else {
+      glBindTexture(GL_TEXTURE_2D, t.name);
+      glCompressedTexSubImage2D(GL_TEXTURE_2D, GLint(u.level), 0, 0, w, h, internal, GLsizei(texels.size()),
+                                texels.data());
+    }
+    return;
+  }
   const GlFormat f = glFormat(t.desc.format);
   const GLsizei w = GLsizei(levelWidth(t.desc, u.level)), h = GLsizei(levelHeight(t.desc, u.level));
   if (!dsa_) {

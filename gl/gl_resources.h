@@ -8,11 +8,16 @@
 // glNamedBufferStorage) and starts zeroed like the oracle's, because GL leaves fresh storage
 // undefined; every level is uploaded by the list (never glGenerateMipmap, spec-choices T13);
 // GL_TEXTURE_MAX_LEVEL = levels - 1; a texture's own sampling parameters stay GL's defaults, which
-// equal SamplerState{} (the oracle's rule for a unit without a sampler).
+// equal SamplerState{} (the oracle's rule for a unit without a sampler). A compressed texture
+// (TextureDesc::compression) has the S3TC internal format, starts as all-zero blocks (what the oracle's
+// storage decodes to) and receives the list's blocks as they are (glCompressedTextureSubImage2D); a context
+// without EXT_texture_compression_s3tc refuses it with an Error.
 // Internal to gl/.
 #pragma once
 
 #include <span>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "gl/gl_api.h"
@@ -29,7 +34,12 @@ struct GlTexture {
 
 class FrameResources {
  public:
-  void configure(bool dsa) { dsa_ = dsa; }
+  // s3tc: the context has GL_EXT_texture_compression_s3tc (named with `renderer` when it has not).
+  void configure(bool dsa, bool s3tc = false, std::string renderer = {}) {
+    dsa_ = dsa;
+    s3tc_ = s3tc;
+    renderer_ = std::move(renderer);
+  }
   void createTexture(ResourceId id, const TextureDesc& desc);
   void uploadTexture(const UploadTexture& u, std::span<const uint8_t> texels);
   void createBuffer(ResourceId id, uint64_t size);
@@ -50,9 +60,12 @@ class FrameResources {
  private:
   void grow(ResourceId id);
   void createTextureBound(GlTexture& t, const GlFormat& f);
+  void createCompressedTexture(ResourceId id, GlTexture& t);
   std::vector<GlTexture> textures_;  // indexed by id
   std::vector<GLuint> buffers_, samplers_;
   bool dsa_ = true;
+  bool s3tc_ = false;
+  std::string renderer_;
   std::vector<uint8_t> zeros_;  // 3.3 path: the zero bytes new storage is initialised with
   const uint8_t* zeros(size_t bytes);
 };

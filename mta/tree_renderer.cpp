@@ -73,6 +73,7 @@ FrameResult TreeRenderer::renderFrame(const Camera& camera) {
   recordFrame(meta, geometry_, r.plan, v, *textures_, rp, rec);
   r.counters = countCommands(rec.list);
   r.drawTexture = rec.drawTexture;
+  r.decodedBytesResident = textures_->decodedBytes();
   r.recordMs = msSince(t0);
 
   t0 = std::chrono::steady_clock::now();
@@ -113,6 +114,7 @@ nlohmann::json toJson(const FrameResult& r, RenderMode mode) {
   if (mode == RenderMode::AtlasTree) {
     j["blocks_resident"] = r.blocksResident;
     j["bytes_resident"] = r.bytesResident;
+    j["decoded_bytes_resident"] = r.decodedBytesResident;
     j["capacity_bytes"] = r.capacityBytes;
     j["blocks_loaded"] = r.residency.blocksLoaded;
     j["bytes_loaded"] = r.residency.bytesLoaded;

@@ -45,6 +45,10 @@ struct FrameResult {
   FrameCounters counters;
   ResidencyFrameStats residency;  // AtlasTree mode
   uint64_t bytesResident = 0, blocksResident = 0, capacityBytes = 0;
+  // RAM of the decoded RGBA8 mip chains the texture cache holds after recording the frame (texture_cache.h):
+  // the chains of the textures drawn, kept while their blocks stay resident. Capacity and bytesResident
+  // count paging-file bytes, as the thesis's k does; this is what drawing from them costs on top.
+  uint64_t decodedBytesResident = 0;
   double updateMs = 0.0, recordMs = 0.0, renderMs = 0.0;
   std::vector<uint8_t> image;     // RGBA8, rows bottom first (GL order), width x height
   std::vector<BoundTexture> drawTexture;

@@ -30,6 +30,10 @@ std::string_view commandName(size_t index) {
 uint64_t levelBytes(const TextureDesc& d, uint32_t level) {
   return uint64_t(levelWidth(d, level)) * levelHeight(d, level) * texelBytes(d.format);
 }
+uint64_t uploadBytes(const TextureDesc& d, uint32_t level) {
+  if (d.compression == BcFormat::None) return levelBytes(d, level);
+  return bcLevelBytes(d.compression, levelWidth(d, level), levelHeight(d, level));
+}
 uint32_t fullMipCount(uint32_t w, uint32_t h) {
   uint32_t m = std::max(w, h), n = 1;
   while (m > 1) { m >>= 1; ++n; }

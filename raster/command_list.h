@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "base/error.h"
+#include "raster/bc_decode.h"
 #include "raster/limits.h"
 #include "raster/types.h"
 
@@ -39,6 +40,11 @@ struct TextureDesc {
   Format format = Format::RGBA8;
   uint32_t width = 0, height = 1, layers = 1, levels = 1;
   ResourceId buffer = kNone;  // Buffer kind only: the buffer whose bytes are the texels (glTexBuffer)
+  // BC1 / BC3: a Tex2D RGBA8 texture whose uploads carry S3TC blocks (bc_decode.h). GL keeps the blocks
+  // (GL_COMPRESSED_RGB_S3TC_DXT1_EXT / GL_COMPRESSED_RGBA_S3TC_DXT5_EXT); the oracle decodes them into its
+  // RGBA8 storage by the rule of docs/spec-choices.md C1-C4. Until a level is uploaded it holds all-zero
+  // blocks, which decode to opaque black (BC1) or transparent black (BC3).
+  BcFormat compression = BcFormat::None;
 };
 
 enum class BufferKind : uint8_t { Vertex = 0, Index = 1, Texel = 2, Count };
@@ -46,7 +52,8 @@ enum class BufferKind : uint8_t { Vertex = 0, Index = 1, Texel = 2, Count };
 // --- commands -------------------------------------------------------------------------------
 struct CreateTexture { ResourceId id; TextureDesc desc; };
 // Replaces one whole level of one layer (glTextureSubImage3D of the full level). Texels are tightly
-// packed rows, bottom row first (GL's convention).
+// packed rows, bottom row first (GL's convention); for a compressed texture, the level's S3TC blocks
+// (glCompressedTextureSubImage2D), block row 0 holding rows 0..3.
 struct UploadTexture { ResourceId id; uint32_t level, layer; BlobRange data; };
 struct CreateBuffer { ResourceId id; BufferKind kind; uint64_t size; };
 struct UploadBuffer { ResourceId id; uint64_t offset; BlobRange data; };
@@ -174,8 +181,10 @@ class CommandList {
   uint32_t nextId_ = 1;  // shared id space over all resource kinds
 };
 
-// Bytes of level `level` of one layer of a 2D / array texture (tightly packed).
+// Bytes of level `level` of one layer of a 2D / array texture (tightly packed), as stored by the oracle.
 uint64_t levelBytes(const TextureDesc& d, uint32_t level);
+// Bytes an UploadTexture of that level carries: levelBytes, or the level's S3TC blocks when compressed.
+uint64_t uploadBytes(const TextureDesc& d, uint32_t level);
 // max(1, size >> level); inline because texel addressing calls them per pixel.
 inline uint32_t levelWidth(const TextureDesc& d, uint32_t level) {
   const uint32_t w = level >= 32 ? 1u : d.width >> level;

@@ -497,9 +497,33 @@ struct CpuBackend::Impl {
     flush();  // pending draws may sample the old contents
     auto src = l.bytes(c.data);
     TextureData& t = *textures[c.id];
-    t.prov.reset();  // uploaded texels are exact: no interval any more
     ++depthEpoch;
     const uint64_t bytes = levelBytes(t.desc, c.level);
+    if (t.desc.compression != BcFormat::None) {
+      // S3TC blocks: decoded once here by the documented rule (bc_decode.h, spec-choices C1-C4); sampling
+      // then reads RGBA8 like any other texture.
+      const uint32_t w = levelWidth(t.desc, c.level), h = levelHeight(t.desc, c.level);
+      const std::vector<uint8_t> texels = decodeBcLevel(t.desc.compression, w, h, src);
+      std::memcpy(t.levels[c.level].data() + bytes * c.layer, texels.data(), texels.size());
+      if (options.provenance) {
+        // GL may round each interpolant to either integer around the extension's exact value, which is
+        // within one unit of the oracle's nearest (docs/crosscheck.md, BC_INTERPOLANT): those channels get
+        // [v - 1, v + 1] in the interval images, read by lookups like a rendered texture's.
+        if (!t.prov) t.prov = std::make_shared<Provenance>(t);
+        const std::vector<uint8_t> mask = bcInterpolantChannels(t.desc.compression, w, h, src);
+        uint8_t* lo = t.prov->lo->levels[c.level].data() + bytes * c.layer;
+        uint8_t* hi = t.prov->hi->levels[c.level].data() + bytes * c.layer;
+        for (size_t i = 0; i < mask.size(); ++i)
+          for (int ch = 0; ch < 4; ++ch) {
+            const uint8_t v = texels[4 * i + size_t(ch)];
+            const bool free = (mask[i] >> ch) & 1;
+            lo[4 * i + size_t(ch)] = free && v > 0 ? uint8_t(v - 1) : v;
+            hi[4 * i + size_t(ch)] = free && v < 255 ? uint8_t(v + 1) : v;
+          }
+      }
+      return;
+    }
+    t.prov.reset();  // uploaded texels are exact: no interval any more
     std::memcpy(t.levels[c.level].data() + bytes * c.layer, src.data(), src.size());
   }
   void apply(const CommandList&, const CreateBuffer& c) {

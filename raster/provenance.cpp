@@ -8,7 +8,7 @@ std::string_view ambiguityClassName(int bit) {
   static constexpr std::string_view kNames[kClassCount] = {
       "EDGE_TIE",         "CLIP_EDGE", "LOD_NEAR_SWITCH",  "SUBTEXEL_NEAR_HALF", "LAYER_TIE",     "DEPTH_NEAR_EQUAL",
       "OOB_FETCH",        "HELPER_DERIV", "FILTER_PRECISION", "BLEND_PRECISION", "OUTPUT_ROUNDING",
-      "INPUT_INTERVAL",   "ALPHA_TEST"};
+      "INPUT_INTERVAL",   "ALPHA_TEST", "BC_INTERPOLANT"};
   return bit >= 0 && bit < kClassCount ? kNames[bit] : std::string_view("?");
 }
 

@@ -45,7 +45,8 @@ enum AmbiguityClass : uint16_t {
   kOutputRounding = 1u << 10,  // the unrounded output is within interpolation tolerance of a rounding step
   kInputInterval = 1u << 11,   // a sampled texture was rendered here and its texels carry their own freedoms
   kAlphaTest = 1u << 12,       // the program's discard (alpha test) differs between the legal sampled values
-  kClassCount = 13
+  kBcInterpolant = 1u << 13,   // a sampled S3TC texel is an interpolant, whose rounding is free (+-1 per channel)
+  kClassCount = 14
 };
 std::string_view ambiguityClassName(int bit);
 

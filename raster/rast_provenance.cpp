@@ -749,7 +749,7 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
         // A program that is not monotone in what it samples (Program::monotoneInSamples) cannot be
         // bounded by its runs on the interval images: where it read a texel carrying an interval, every
         // output is legal (classed INPUT_INTERVAL); where it read only exact texels its runs agree.
-        const bool freeInput = !monotone && (sp.classes[size_t(p)] & kInputInterval) != 0;
+        const bool freeInput = !monotone && (sp.classes[size_t(p)] & (kInputInterval | kBcInterpolant)) != 0;
         u.dontCare = sp.dontCare[size_t(p)] || unbounded || freeInput;
         u.posTolPx = posTolPx;
         u.depthTest = du.depthTest, u.depthWrite = du.depthWrite, u.depthUnbounded = du.depthUnbounded;

@@ -77,6 +77,7 @@ void fields(Ar& ar, C& c) {
   ar.u32(c.desc.layers, "desc.layers");
   ar.u32(c.desc.levels, "desc.levels");
   ar.u32(c.desc.buffer, "desc.buffer");
+  if (ar.version >= 2) ar.enumeration(c.desc.compression, "desc.compression");
 }
 template <class Ar, Is<UploadTexture> C>
 void fields(Ar& ar, C& c) {
@@ -240,8 +241,9 @@ ResourceId createdId(const Command& c) {
 
 class Writer {
  public:
-  Writer(std::vector<uint8_t>& out, uint64_t blobSize) : out_(out), blobSize_(blobSize) {}
+  Writer(std::vector<uint8_t>& out, uint64_t blobSize, uint32_t v) : version(v), out_(out), blobSize_(blobSize) {}
   Context ctx{"encodeFrame"};
+  uint32_t version;  // of the file being written: which fields exist
 
   void raw(uint64_t v, int bytes) {
     for (int i = 0; i < bytes; ++i) out_.push_back(uint8_t(v >> (8 * i)));
@@ -300,6 +302,7 @@ class Reader {
   }
   Context ctx;
   uint64_t blobSize = 0;
+  uint32_t version = kFrameVersion;  // of the file being read, from its header
 
   size_t pos() const { return pos_; }
   void seek(size_t p) { pos_ = p; }
@@ -402,7 +405,11 @@ std::vector<uint8_t> encodeFrame(const CommandList& list) {
   const std::vector<uint8_t>& blob = list.blob();
   std::vector<uint8_t> out(kFrameHeaderSize, 0);
   out.reserve(kFrameHeaderSize + list.commands().size() * 32 + blob.size());
-  Writer w(out, blob.size());
+  // The oldest version that can hold the list (serialize.h): 2 only when a texture is compressed.
+  uint32_t version = 1;
+  for (const Command& c : list.commands())
+    if (const auto* t = std::get_if<CreateTexture>(&c); t && t->desc.compression != BcFormat::None) version = 2;
+  Writer w(out, blob.size(), version);
 
   ResourceId maxCreated = kNone;
   const auto& cmds = list.commands();
@@ -426,7 +433,7 @@ std::vector<uint8_t> encodeFrame(const CommandList& list) {
   out.insert(out.end(), blob.begin(), blob.end());
 
   std::memcpy(out.data(), kFrameMagic, 8);
-  putLe(out, kOffVersion, kFrameVersion, 4);
+  putLe(out, kOffVersion, version, 4);
   putLe(out, kOffHeaderSize, kFrameHeaderSize, 4);
   putLe(out, kOffCommandCount, cmds.size(), 8);
   putLe(out, kOffBlobSize, blob.size(), 8);
@@ -449,13 +456,15 @@ CommandList decodeFrame(std::span<const uint8_t> bytes, std::string_view sourceN
   uint32_t version = 0, headerSize = 0;
   uint64_t count = 0, blobSize = 0, nextId = 0;
   r.u32(version, "version");
-  if (version != kFrameVersion) {
-    r.ctx.fail(kOffVersion, fmt::format("field version = {} is not supported (expected {})", version, kFrameVersion));
+  if (version < kFrameOldestVersion || version > kFrameVersion) {
+    r.ctx.fail(kOffVersion, fmt::format("field version = {} is not supported (expected {} to {})", version,
+                                        kFrameOldestVersion, kFrameVersion));
   }
+  r.version = version;
   r.u32(headerSize, "headerSize");
   if (headerSize != kFrameHeaderSize) {
     r.ctx.fail(kOffHeaderSize, fmt::format("field headerSize = {} is wrong (version {} headers have {} bytes)",
-                                           headerSize, kFrameVersion, kFrameHeaderSize));
+                                           headerSize, version, kFrameHeaderSize));
   }
   r.u64(count, "commandCount");
   r.u64(blobSize, "blobSize");

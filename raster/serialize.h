@@ -19,7 +19,11 @@
 namespace tessera {
 
 constexpr char kFrameMagic[8] = {'T', 'S', 'F', 'R', 'A', 'M', 'E', '\0'};
-constexpr uint32_t kFrameVersion = 1;
+// Version 2 adds desc.compression to CreateTexture (S3TC textures). A list without a compressed texture
+// is still written as version 1, byte for byte as before (so existing files, repros and byte snapshots
+// stay valid); a list with one is written as version 2. The decoder reads both.
+constexpr uint32_t kFrameVersion = 2;
+constexpr uint32_t kFrameOldestVersion = 1;
 constexpr uint32_t kFrameHeaderSize = 72;        // magic 8 + version 4 + header size 4 + 3 x u64 + sha 32
 constexpr uint32_t kFrameMaxStringBytes = 4096;  // program names and marker texts
 

@@ -50,7 +50,8 @@ void fetchQuad2DArray(const TexUnit& u, const int64_t x[4], const int64_t y[4], 
     const TextureData& bound = sp.bound == SampleBound::Lo ? *tex.prov->lo : *tex.prov->hi;
     float b[4];
     decode(d.format, bound.texel(0, li, xi, yi), b);
-    if (std::memcmp(b, out[p], sizeof b) != 0) sp.classes[size_t(p)] |= kInputInterval;
+    if (std::memcmp(b, out[p], sizeof b) != 0)
+      sp.classes[size_t(p)] |= d.compression != BcFormat::None ? uint16_t(kBcInterpolant) : uint16_t(kInputInterval);
     std::memcpy(out[p], b, sizeof b);
   }
 }

@@ -21,6 +21,11 @@ TextureData::TextureData(const TextureDesc& d, StoragePool* pool) : desc(d) {
     const size_t n = size_t(levelBytes(desc, l) * desc.layers);
     if (pool) levels[l] = pool->take(n);
     else levels[l].assign(n, uint8_t{0});
+    // A compressed texture starts as all-zero blocks, as GL's does (the GL backend uploads them): a BC1
+    // zero block is color0 = color1 = 0, three-colour mode, code 0: opaque black (spec-choices C2). A
+    // BC3 zero block decodes to (0, 0, 0, 0), the zeroed storage.
+    if (desc.compression == BcFormat::BC1)
+      for (size_t i = 3; i < n; i += 4) levels[l][i] = 255;
   }
 }
 

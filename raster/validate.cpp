@@ -259,6 +259,18 @@ class Validator {
       return false;
     }
     bool ok = true;
+    if (!enumOk(d.compression)) {
+      report("desc.compression = {} is out of range (0 none, 1 BC1, 2 BC3)", unsigned(d.compression));
+      return false;
+    }
+    // S3TC blocks decode to RGBA8, and only plain 2D textures use them: GL cannot render into a compressed
+    // format, and nothing here needs compressed arrays.
+    if (d.compression != BcFormat::None && (d.kind != TextureKind::Tex2D || d.format != Format::RGBA8)) {
+      report("desc.compression = {} needs a Tex2D RGBA8 texture (has {} {})", bcFormatName(d.compression),
+             d.kind == TextureKind::Tex2D ? "Tex2D" : d.kind == TextureKind::Tex2DArray ? "Tex2DArray" : "Buffer",
+             formatName(d.format));
+      return false;
+    }
     if (d.kind == TextureKind::Buffer) {
       // glTexBuffer: a texel buffer seen as a 1D array of texels; one level, one layer.
       if (d.format == Format::D32F) {
@@ -323,9 +335,11 @@ class Validator {
     }
     if (c.level >= d.levels) report("level {} is out of range (texture {} has {} levels)", c.level, c.id, d.levels);
     if (c.layer >= d.layers) report("layer {} is out of range (texture {} has {} layers)", c.layer, c.id, d.layers);
-    if (c.level < d.levels && blob && c.data.size != levelBytes(d, c.level)) {
-      report("data has {} bytes but level {} of texture {} ({}x{} {}) has {}", c.data.size, c.level, c.id,
-             levelWidth(d, c.level), levelHeight(d, c.level), formatName(d.format), levelBytes(d, c.level));
+    if (c.level < d.levels && blob && c.data.size != uploadBytes(d, c.level)) {
+      report("data has {} bytes but level {} of texture {} ({}x{} {}{}) has {}", c.data.size, c.level, c.id,
+             levelWidth(d, c.level), levelHeight(d, c.level), formatName(d.format),
+             d.compression == BcFormat::None ? "" : std::string(" as ") + bcFormatName(d.compression) + " blocks",
+             uploadBytes(d, c.level));
     }
   }
 
@@ -521,6 +535,10 @@ class Validator {
       const TextureDesc& d = r->desc;
       if (d.kind == TextureKind::Buffer) {
         report("{}: texture {} is a Buffer texture and cannot be rendered to", name, id);
+        return;
+      }
+      if (d.compression != BcFormat::None) {
+        report("{}: texture {} is {}-compressed and cannot be rendered to", name, id, bcFormatName(d.compression));
         return;
       }
       if (depth && d.format != Format::D32F) {

@@ -142,6 +142,24 @@ TEST(MutationCatalogue, StateMutantsChangeOnlyTheSamplerFieldTheyAreAbout) {
   EXPECT_EQ(gl::findMutation("lod_bias_plus_1_8")->applyToState(s), s);
 }
 
+TEST(MutationCatalogue, Bc1EndpointsSwappedExchangesTheTwoEndpointsOfEveryBc1BlockAndTouchesNothingElse) {
+  const gl::Mutation* m = gl::findMutation("bc1_endpoints_swapped");
+  ASSERT_NE(m, nullptr);
+  TextureDesc d;
+  d.width = d.height = 4;
+  d.compression = BcFormat::BC1;
+  // Two blocks: (color0, color1, codes) = (0x0821, 0x0000, E4 00 00 00) and (0xF800, 0x001F, 55 55 55 55).
+  const std::vector<uint8_t> blocks = {0x21, 0x08, 0x00, 0x00, 0xE4, 0, 0, 0, 0x00, 0xF8, 0x1F, 0x00, 0x55, 0x55, 0x55, 0x55};
+  const std::vector<uint8_t> swapped = {0x00, 0x00, 0x21, 0x08, 0xE4, 0, 0, 0, 0x1F, 0x00, 0x00, 0xF8, 0x55, 0x55, 0x55, 0x55};
+  EXPECT_EQ(m->applyToUpload(d, blocks), swapped);
+  d.compression = BcFormat::BC3;  // BC3 and raw uploads pass unchanged (empty: no corruption)
+  EXPECT_TRUE(m->applyToUpload(d, blocks).empty());
+  d.compression = BcFormat::None;
+  EXPECT_TRUE(m->applyToUpload(d, blocks).empty());
+  d.compression = BcFormat::BC1;
+  EXPECT_TRUE(gl::findMutation("border_color_ignored")->applyToUpload(d, blocks).empty());
+}
+
 // The fast subset: small scenes that each exercise one rule, and the mutants that break exactly
 // that rule. Each expected killer is worked out from the scene's construction (its header comment),
 // not from an earlier run: e.g. array_layers samples layers 0.7, 1.8 and 2.7, which floor(r) and

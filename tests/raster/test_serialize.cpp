@@ -398,8 +398,9 @@ TEST(Serialize, HeaderErrorsNameTheField) {
   f[0] = 'X';
   EXPECT_NE(errorOf(f).find("header at byte 0: field magic"), std::string::npos) << errorOf(f);
   f = good;
-  putU32(f, 8, 2);
-  EXPECT_NE(errorOf(f).find("header at byte 8: field version = 2 is not supported (expected 1)"), std::string::npos);
+  putU32(f, 8, 3);
+  EXPECT_NE(errorOf(f).find("header at byte 8: field version = 3 is not supported (expected 1 to 2)"), std::string::npos)
+      << errorOf(f);
   f = good;
   putU32(f, 12, 80);
   EXPECT_NE(errorOf(f).find("header at byte 12: field headerSize = 80"), std::string::npos);

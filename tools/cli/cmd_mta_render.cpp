@@ -48,6 +48,7 @@ nlohmann::json runMtaRender(const PathRunArgs& a) {
   const auto [origMax, origMean] = maxMean(column(rows, "nodes_with_original_textures"));
   const auto [timeMax, timeMean] = maxMean(column(rows, "frame_time_ms"));
   const auto [loadedMax, loadedMean] = maxMean(column(rows, "blocks_loaded"));
+  const auto [decodedMax, decodedMean] = maxMean(column(rows, "decoded_bytes_resident"));
   uint64_t framesMissing = 0, loadedTotal = 0;
   for (const auto& r : rows) {
     framesMissing += r["needed_blocks_missing"].get<uint64_t>() > 0 ? 1 : 0;
@@ -67,6 +68,8 @@ nlohmann::json runMtaRender(const PathRunArgs& a) {
       {"nodes_with_original_textures_mean", origMean},
       {"peak_bytes_resident", renderer.residency()->peakBytesResident()},
       {"capacity_bytes", renderer.residency()->capacity()},
+      {"peak_decoded_bytes_resident", decodedMax},
+      {"decoded_bytes_resident_mean", decodedMean},
       {"blocks_loaded_total", loadedTotal},
       {"blocks_loaded_max_per_frame", loadedMax},
       {"frames_with_needed_blocks_missing", framesMissing},

@@ -32,6 +32,7 @@ void buildProvokingVertex(CommandList& cl, int w, int h);
 void buildArrayLayers(CommandList& cl, int w, int h);
 void buildAtlasClip(CommandList& cl, int w, int h);
 void buildLodLevels(CommandList& cl, int w, int h);
+void buildS3tcBlocks(CommandList& cl, int w, int h);
 void buildDepthTies(CommandList& cl, int w, int h);
 void buildFarVertices(CommandList& cl, int w, int h);
 void buildAlphaMask(CommandList& cl, int w, int h);

@@ -39,6 +39,7 @@ const std::vector<Entry>& entries() {
       {{"rtta_five_ghosted_ao", "render-to-texture-atlas: ghosted view with ambient occlusion and edges computed on the caliper's own atlas region (Fig. 3D; atlas_sprite_ao, not monotone: INPUT_INTERVAL)", 160, 160}, buildRttaFiveGhostedAo},
       {{"rtta_five_ao_post", "render-to-texture-atlas: ghosted-ao's post-process alone, every object by atlas_sprite_ao over the oracle's own capture uploaded (exact texels: GL must compute the program's floats)", 160, 160}, buildRttaFiveAoPost},
       {{"light_map", "a second texture layer multiplied in (textured_layers, thesis 5.1.3): trilinear base x trilinear light map, RGB at strength 1 and glTF occlusion (R) at 0.6", 256, 192}, buildLightMap},
+      {{"s3tc_blocks", "S3TC textures uploaded as blocks: BC1 and BC3 (alpha ramp), magnified and trilinear-minified, decoded by GL and by the oracle's documented rule (BC_INTERPOLANT)", 128, 128}, buildS3tcBlocks},
   };
   return e;
 }
