@@ -87,7 +87,9 @@ def mta_seeds(tessera, out, tmp):
     tri = "mtllib two.mtl\nv 0 0 0\nv 10 0 0\nv 10 10 0\nv 20 0 0\nv 30 0 0\nv 30 10 0\nvt 0 0\nvt 1 0\nvt 1 1\n"
     write(os.path.join(scene, "two.obj"), tri + "usemtl a\nf 1/1 2/2 3/3\nusemtl b\nf 4/1 5/2 6/3\n")
     build(os.path.join(scene, "two.obj"), "two-triangles-root-and-two-leaves.mta", "--d-min", "5")
-    # 3. One triangle with an RGBA texture: an RGBA tree (4 bytes per atlas texel).
+    #    The same tree with raw blocks (`--raw`): row pieces and raw atlases (the others store S3TC chains).
+    build(os.path.join(scene, "two.obj"), "two-triangles-raw-blocks.mta", "--d-min", "5", "--raw")
+    # 3. One triangle with an RGBA texture: an RGBA tree (BC3 blocks).
     write(os.path.join(scene, "rgba.obj"), tri + "usemtl c\nf 1/1 2/2 3/3\n")
     build(os.path.join(scene, "rgba.obj"), "one-triangle-rgba-tree.mta", "--d-min", "5")
     # No malformed .mta seeds yet: PagingFile leaks its descriptor on every file it rejects, which the mta

@@ -119,6 +119,19 @@ struct OriginalPacker {
     ImageRecord& r = meta.images[image];
     const size_t rowBytes = size_t(r.width) * r.channels;
     r.firstPiece = uint32_t(meta.pieces.size());
+    if (meta.encoding == BlockEncoding::S3tc) {
+      // One piece in a block of its own: the chain encoded from the stored channels of level 0 (a 3-channel
+      // image's alpha is 255, as the raw runtime reads it), so the chain is the raw file's chain, encoded.
+      std::vector<uint8_t> texels(size_t(r.width) * r.height * r.channels);
+      const uint8_t* src = img.levels[0].data();
+      for (size_t t = 0; t < size_t(r.width) * r.height; ++t)
+        for (uint32_t c = 0; c < r.channels; ++c) texels[t * r.channels + c] = src[t * 4 + c];
+      meta.pieces.push_back(PieceRecord{image, 0, 0, r.height, 0});
+      meta.pieces.back().block =
+          w.addBlock(BlockKind::Original, 0, 0, image, encodeS3tcChain(r.width, r.height, r.channels, texels));
+      r.pieceCount = 1;
+      return;
+    }
     for (uint32_t row = 0; row < r.height;) {
       // The layout is the size estimate's own (output_size.h), so the estimate stays exact.
       const OriginalBlockLayout::Piece p = layout.next(r.height - row, rowBytes, row == 0);
@@ -336,7 +349,9 @@ BuildReport buildMta(const Scene& scene, const BuildParams& params, const std::s
     std::function<void(uint32_t, std::vector<std::vector<uint8_t>>&)> complete = [&](uint32_t node,
                                                                                        std::vector<std::vector<uint8_t>>& atlas) {
       for (uint32_t l = 0; l < layers; ++l)
-        tree.atlasBlocks[node * layers + l] = writer.addBlock(BlockKind::Atlas, uint8_t(ti), uint8_t(l), node, atlas[l]);
+        tree.atlasBlocks[node * layers + l] = writer.addBlock(
+            BlockKind::Atlas, uint8_t(ti), uint8_t(l), node,
+            meta.encoding == BlockEncoding::S3tc ? encodeS3tcChain(A, A, C, atlas[l]) : atlas[l]);
       const int32_t parent = tree.nodes[node].parent;
       if (parent < 0) return;
       auto it = open.find(uint32_t(parent));

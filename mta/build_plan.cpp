@@ -42,6 +42,7 @@ BuildPlan planBuild(const Scene& scene, const BuildParams& params, const std::fu
   meta.params = params;
   meta.params.tanHalfFov = params.effectiveTanHalfFov();
   meta.layerCount = layers;
+  meta.encoding = params.encoding;
   meta.textures = scene.textures;
   CriticalReport crit;
   const Geometry g = handleCriticalTriangles(scene, params, dMin, crit);

@@ -43,6 +43,7 @@ ResourceId upload(CommandList& cl, const MipChain& c) {
   TextureDesc d;
   d.kind = TextureKind::Tex2D;
   d.format = Format::RGBA8;
+  d.compression = c.compression;  // S3TC files: the blocks as stored; the oracle decodes, GL takes them as they are
   d.width = c.width;
   d.height = c.height;
   d.levels = uint32_t(c.levels.size());

@@ -10,6 +10,7 @@ nlohmann::json describe(const PagingFile& f, bool verifyBlocks) {
   const MtaMeta& m = f.meta();
   nlohmann::json j;
   j["format_version"] = kFormatVersion;
+  j["block_encoding"] = blockEncodingName(m.encoding);  // "raw" or "s3tc" (header byte 72)
   j["file_bytes"] = f.fileSize();
   j["layers"] = m.layerCount;
   j["build_parameters"] = {{"d_min", m.params.dMin},

@@ -10,7 +10,10 @@ uint64_t padded(uint64_t bytes) { return (bytes + 15) & ~uint64_t(15); }
 
 }  // namespace
 
-uint64_t atlasBlockBytes(uint32_t atlasSize, uint32_t channels) { return uint64_t(atlasSize) * atlasSize * channels; }
+uint64_t atlasBlockBytes(uint32_t atlasSize, uint32_t channels, BlockEncoding encoding) {
+  if (encoding == BlockEncoding::S3tc) return s3tcChainBytes(atlasSize, atlasSize, channels);
+  return uint64_t(atlasSize) * atlasSize * channels;
+}
 
 uint64_t originalBlockTarget(uint32_t atlasSize) { return uint64_t(atlasSize) * atlasSize * 4; }
 
@@ -31,7 +34,7 @@ OutputEstimate estimateOutput(const BuildPlan& plan) {
   e.nodes = plan.nodes, e.leaves = plan.leaves;
   for (const Tree& t : m.trees) {
     e.atlasBlocks += uint64_t(t.nodes.size()) * m.layerCount;
-    e.atlasBytes += uint64_t(t.nodes.size()) * m.layerCount * padded(atlasBlockBytes(m.params.atlasSize, t.channels()));
+    e.atlasBytes += uint64_t(t.nodes.size()) * m.layerCount * padded(atlasBlockBytes(m.params.atlasSize, t.channels(), m.encoding));
   }
   // Originals are stored in the order of first use: trees in order, leaves in node order, each leaf's
   // images in its (sorted) list; batches of leaves do not change that order (build.cpp).
@@ -46,6 +49,11 @@ OutputEstimate estimateOutput(const BuildPlan& plan) {
         if (stored[img]) continue;
         stored[img] = 1;
         const ImageRecord& r = m.images[img];
+        if (m.encoding == BlockEncoding::S3tc) {  // one piece, one block: the image's chain
+          ++e.pieces;
+          close(s3tcChainBytes(r.width, r.height, r.channels));
+          continue;
+        }
         const uint64_t rowBytes = uint64_t(r.width) * r.channels;
         for (uint32_t row = 0; row < r.height;) {
           const OriginalBlockLayout::Piece p = layout.next(r.height - row, rowBytes, row == 0);

@@ -1,7 +1,7 @@
 // The size of a paging file, known from the build plan before anything is written.
 //
 // Implements: the one place that knows how blocks are encoded and laid out: the bytes of one atlas block
-// (raw A × A × channels today; a compressed encoding changes atlasBlockBytes and nothing else here), how
+// (raw A × A × channels, or the S3TC mip chain of block_encoding.h), how
 // original images are cut into row pieces in blocks of their own of at most about A² · 4 bytes (OriginalBlockLayout, which the
 // builder's packer uses itself, so the two cannot drift), and the file's exact size: the 128-byte header,
 // every block padded to 16 bytes, and the metadata (metadataBytes, paging_file.h). The estimate is exact,
@@ -16,7 +16,7 @@
 namespace tessera::mta {
 
 // Payload bytes of one stored atlas of an A x A tree with `channels` (3: RGB tree, 4: RGBA tree).
-uint64_t atlasBlockBytes(uint32_t atlasSize, uint32_t channels);
+uint64_t atlasBlockBytes(uint32_t atlasSize, uint32_t channels, BlockEncoding encoding);
 // The fill at which an Original block is closed: about one RGBA atlas (A² · 4 bytes).
 uint64_t originalBlockTarget(uint32_t atlasSize);
 

@@ -285,12 +285,13 @@ void PagingFileWriter::finish(MtaMeta& meta) {
   file_.writeAt(metaOffset, body);
   uint8_t h[kHeaderSize] = {};
   std::memcpy(h, kMagic, 8);
-  const uint32_t version = kFormatVersion, hs = kHeaderSize;
+  const uint32_t version = kFormatVersion, hs = kHeaderSize, encoding = uint32_t(meta.encoding);
   const uint64_t fileSize = metaOffset + body.size(), metaSize = body.size();
   std::memcpy(h + 8, &version, 4), std::memcpy(h + 12, &hs, 4);
   std::memcpy(h + 16, &fileSize, 8), std::memcpy(h + 24, &metaOffset, 8), std::memcpy(h + 32, &metaSize, 8);
   const auto ms = sha256(body);
   std::memcpy(h + 40, ms.data(), 32);
+  std::memcpy(h + 72, &encoding, 4);
   const auto hsha = sha256(std::span<const uint8_t>(h, 96));
   std::memcpy(h + 96, hsha.data(), 32);
   file_.writeAt(0, std::span<const uint8_t>(h, kHeaderSize));
@@ -329,6 +330,9 @@ void PagingFile::load(const ResourceLimits& limits) {
   if (version == 1)
     throw Error(path_ + ": format version 1: its original images share blocks, which this reader no longer accepts "
                 "(version 2 gives every image blocks of its own, docs/mta-format.md); rebuild it with `tessera mta build`");
+  if (version == 2)
+    throw Error(path_ + ": format version 2: its header does not record the block encoding, which this reader needs "
+                "(version 3 stores raw or S3TC blocks, docs/mta-format.md); rebuild it with `tessera mta build`");
   if (version != kFormatVersion)
     throw Error(path_ + ": format version " + std::to_string(version) + " (this reader knows " +
                 std::to_string(kFormatVersion) + ")");
@@ -343,7 +347,14 @@ void PagingFile::load(const ResourceLimits& limits) {
     throw Error(path_ + ": cannot read the metadata");
   const auto ms = sha256(body);
   if (std::memcmp(ms.data(), h + 40, 32) != 0) throw Error(path_ + ": metadata checksum mismatch (corrupted node table or geometry)");
+  uint32_t encoding;
+  std::memcpy(&encoding, h + 72, 4);
+  if (encoding > uint32_t(BlockEncoding::S3tc))
+    throw Error(path_ + ": header.encoding: " + std::to_string(encoding) + " is not 0 (raw) or 1 (S3TC)");
+  for (int i = 76; i < 96; ++i)
+    if (h[i] != 0) throw Error(path_ + ": header byte " + std::to_string(i) + ": " + std::to_string(h[i]) + " (reserved, must be 0)");
   meta_ = deserialize(body, path_);
+  meta_.encoding = BlockEncoding(encoding);
   validateMetadata(meta_, path_, metaOffset, limits);
 }
 
@@ -371,6 +382,11 @@ std::vector<uint8_t> PagingFile::readBlock(uint32_t index) const {
 std::vector<uint8_t> PagingFile::readImage(uint32_t image) const {
   if (image >= meta_.images.size()) throw Error(path_ + ": image " + std::to_string(image) + " out of range");
   const ImageRecord& r = meta_.images[image];
+  if (meta_.encoding == BlockEncoding::S3tc) {
+    // One piece, one block, its chain (validated): level 0 decoded.
+    if (r.pieceCount != 1) throw Error(path_ + ": images[" + std::to_string(image) + "]: internal error: not one piece");
+    return decodeS3tcLevel0(r.width, r.height, r.channels, readBlock(meta_.pieces.at(r.firstPiece).block));
+  }
   std::vector<uint8_t> out(size_t(r.width) * r.height * r.channels);
   const size_t rowBytes = size_t(r.width) * r.channels;
   for (uint32_t k = 0; k < r.pieceCount; ++k) {
@@ -389,7 +405,10 @@ std::vector<uint8_t> PagingFile::readAtlas(uint32_t tree, uint32_t node, uint32_
   if (tree >= meta_.trees.size() || node >= meta_.trees[tree].nodes.size() || layer >= meta_.layerCount)
     throw Error(path_ + ": atlas (tree " + std::to_string(tree) + ", node " + std::to_string(node) + ", layer " +
                 std::to_string(layer) + ") out of range");
-  return readBlock(meta_.trees[tree].atlasBlocks[size_t(node) * meta_.layerCount + layer]);
+  std::vector<uint8_t> bytes = readBlock(meta_.trees[tree].atlasBlocks[size_t(node) * meta_.layerCount + layer]);
+  if (meta_.encoding == BlockEncoding::Raw) return bytes;
+  const uint32_t a = meta_.params.atlasSize;
+  return decodeS3tcLevel0(a, a, meta_.trees[tree].channels(), bytes);
 }
 
 }  // namespace tessera::mta

@@ -18,6 +18,7 @@
 
 #include "base/atomic_file.h"
 #include "base/resource_limits.h"
+#include "mta/block_encoding.h"
 #include "mta/params.h"
 #include "mta/scene.h"
 #include "mta/tree.h"
@@ -25,9 +26,10 @@
 namespace tessera::mta {
 
 // 2: every original image starts blocks of its own (version 1 packed several images into one block, so
-// loading one image read its neighbours' texels too). Version 1 files are refused with a message that says
-// to rebuild them.
-constexpr uint32_t kFormatVersion = 2;
+// loading one image read its neighbours' texels too).
+// 3: the header records the block encoding (raw texels or S3TC mip chains, mta/block_encoding.h). Version 1
+// and 2 files are refused with a message that says to rebuild them.
+constexpr uint32_t kFormatVersion = 3;
 constexpr uint32_t kHeaderSize = 128;
 // Limits of the format (docs/mta-format.md, "Validation").
 constexpr uint32_t kMaxLayers = 16;
@@ -51,7 +53,8 @@ struct BlockInfo {
 };
 
 // One image is stored once, top row first, `channels` (3 or 4) bytes per texel, as row ranges (pieces)
-// in Original blocks of at most about atlas size that hold nothing else (one piece per block).
+// in Original blocks of at most about atlas size that hold nothing else (one piece per block). In an S3TC
+// file an image is one piece (all rows) whose block is its encoded mip chain (block_encoding.h).
 struct ImageRecord {
   uint32_t width = 0, height = 0, channels = 0;
   uint32_t firstPiece = 0, pieceCount = 0;
@@ -72,6 +75,7 @@ struct BuildStats {
 struct MtaMeta {
   BuildParams params;  // memoryLimit, threads and progress are not stored
   uint32_t layerCount = 1;
+  BlockEncoding encoding = BlockEncoding::Raw;  // stored in the header (version 3)
   BuildStats stats;
   std::vector<SceneTexture> textures;
   std::vector<ImageRecord> images;
@@ -121,9 +125,10 @@ class PagingFile {
   uint64_t fileSize() const { return fileSize_; }
   // The payload of block i, checksum verified (Error on mismatch or I/O failure). Thread-safe (pread).
   std::vector<uint8_t> readBlock(uint32_t index) const;
-  // Image i reassembled from its pieces (top row first, channels bytes per texel).
+  // Image i reassembled from its pieces (top row first, channels bytes per texel); in an S3TC file its
+  // level 0 decoded (raster/bc_decode.h).
   std::vector<uint8_t> readImage(uint32_t image) const;
-  // The atlas texels of (tree, node, layer): A x A x channels.
+  // The atlas texels of (tree, node, layer): A x A x channels (S3TC: level 0 decoded).
   std::vector<uint8_t> readAtlas(uint32_t tree, uint32_t node, uint32_t layer = 0) const;
 
  private:

@@ -373,10 +373,17 @@ class Validator {
         fail(f + ".node", "an atlas block of trees[" + std::to_string(b.tree) + "].nodes[" + std::to_string(b.node) +
                               "] layer " + std::to_string(b.layer) + ", whose atlas is blocks[" +
                               std::to_string(owner) + "]");
-      if (b.size != atlasTexels * t.channels())
+      if (m_.encoding == BlockEncoding::S3tc) {
+        const uint64_t want = s3tcChainBytes(m_.params.atlasSize, m_.params.atlasSize, t.channels());
+        if (b.size != want)
+          fail(f + ".size", std::to_string(b.size) + ", expected " + std::to_string(want) + " (the " +
+                                bcFormatName(storedBcFormat(t.channels())) + " mip chain of a " +
+                                std::to_string(m_.params.atlasSize) + "² atlas)");
+      } else if (b.size != atlasTexels * t.channels()) {
         fail(f + ".size", std::to_string(b.size) + ", expected " + std::to_string(atlasTexels * t.channels()) + " (" +
                               std::to_string(m_.params.atlasSize) + "² texels of " + std::to_string(t.channels()) +
                               " bytes)");
+      }
     }
     if (align16(end) != metaOffset_)
       fail("blocks", "the block area ends at " + std::to_string(end) + ", but the metadata starts at " +
@@ -415,6 +422,21 @@ class Validator {
     // the next piece is known to be elsewhere, so that a second piece in it is named as such).
     auto close = [&](size_t j) {
       const PieceRecord& p = m_.pieces[j];
+      if (m_.encoding == BlockEncoding::S3tc) {
+        // One piece per image (all its rows), its block the image's encoded chain (block_encoding.h).
+        const ImageRecord& img = m_.images[p.image];
+        if (p.row0 != 0 || p.rows != img.height)
+          fail(at("pieces", j) + ".rows", "rows [" + std::to_string(p.row0) + ", +" + std::to_string(p.rows) +
+                                              ") of a " + std::to_string(img.height) +
+                                              "-row image: an S3TC file stores each image as one piece");
+        const uint64_t want = s3tcChainBytes(img.width, img.height, img.channels);
+        if (m_.blocks[p.block].size != want)
+          fail(at("blocks", p.block) + ".size", std::to_string(m_.blocks[p.block].size) + ", expected " +
+                                                    std::to_string(want) + " (the " +
+                                                    bcFormatName(storedBcFormat(img.channels)) + " chain of " +
+                                                    at("images", p.image) + ")");
+        return;
+      }
       const uint64_t rowBytes = uint64_t(m_.images[p.image].width) * m_.images[p.image].channels;
       const uint64_t fill = p.rows * rowBytes;  // rows <= 2^16, rowBytes <= 2^18
       const BlockInfo& b = m_.blocks[p.block];
@@ -445,7 +467,7 @@ class Validator {
         close(j - 1);
         // An image's block ends early only where its next row would not fit.
         const uint64_t prevSize = m_.blocks[prev.block].size;
-        if (prev.image == p.image && prevSize + rowBytes <= target)
+        if (m_.encoding == BlockEncoding::Raw && prev.image == p.image && prevSize + rowBytes <= target)
           fail(at("blocks", prev.block) + ".size",
                std::to_string(prevSize) + ": the block ends although the next piece's row (" +
                    std::to_string(rowBytes) + " bytes) fits in a block's " + std::to_string(target) + " bytes");

@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <string>
 
+#include "mta/block_encoding.h"
+
 #include "raster/limits.h"
 
 namespace tessera::mta {
@@ -35,6 +37,9 @@ struct BuildParams {
   uint64_t memoryLimit = uint64_t(4) << 30;  // peak resident bytes allowed (VmRSS), 0 = unchecked
   uint32_t threads = 0;          // 0 = all hardware threads (the bytes never depend on it)
   bool progress = false;         // progress lines on stderr every ~2 s
+  // How blocks are stored (block_encoding.h): S3TC as the thesis did (§4.7); Raw (`mta build --raw`) for
+  // comparison and for tests that check texel values exactly. Stored in the header, not in the metadata.
+  BlockEncoding encoding = BlockEncoding::S3tc;
 
   // Throws Error("<prefix><field>: <reason>") for the first field outside its range; fields are named as
   // in the paging file and `mta info` (d_min, d_min_divisor, tau, atlas_size, border, fov_degrees,

@@ -1,5 +1,6 @@
 #include "mta/texture_cache.h"
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 
@@ -14,6 +15,14 @@ uint64_t MipChain::bytes() const {
   return b;
 }
 
+uint64_t MipChain::decodedBytes() const {
+  if (compression == BcFormat::None) return bytes();
+  uint64_t b = 0;
+  for (uint32_t l = 0; l < levels.size(); ++l)
+    b += uint64_t(std::max(1u, width >> l)) * std::max(1u, height >> l) * 4;
+  return b;
+}
+
 TextureCache::TextureCache(const PagingFile& file, const Residency* residency, uint64_t fileCacheBytes)
     : file_(file), residency_(residency), fileCacheBytes_(fileCacheBytes) {}
 
@@ -24,6 +33,7 @@ void TextureCache::prune() {
     for (auto [b, gen] : it->second.blocks) stale |= !residency_->resident(b) || residency_->generation(b) != gen;
     if (stale) {
       bytes_ -= it->second.chain->bytes();
+      decodedBytes_ -= it->second.chain->decodedBytes();
       it = entries_.erase(it);
     } else {
       ++it;
@@ -52,9 +62,10 @@ const MipChain& TextureCache::store(uint64_t key, std::shared_ptr<MipChain> chai
                                     std::vector<std::pair<uint32_t, uint64_t>> blocks) {
   if (!residency_ && bytes_ + chain->bytes() > fileCacheBytes_) {
     entries_.clear();  // comparison runs: a crude bound is enough, the file is the backing store
-    bytes_ = 0;
+    bytes_ = decodedBytes_ = 0;
   }
   bytes_ += chain->bytes();
+  decodedBytes_ += chain->decodedBytes();
   Entry& e = entries_[key];
   e.chain = std::move(chain);
   e.blocks = std::move(blocks);
@@ -74,6 +85,19 @@ std::vector<uint8_t> toRGBA(const uint8_t* src, size_t texels, uint32_t channels
   return out;
 }
 
+// An S3TC block (the whole encoded chain of a w x h image) cut into its levels.
+std::shared_ptr<MipChain> compressedChain(uint32_t w, uint32_t h, uint32_t channels, std::span<const uint8_t> block) {
+  const std::vector<uint64_t> off = s3tcLevelOffsets(w, h, channels);
+  // The validator fixes the block's size; checked because a wrong one would be read past its end.
+  if (block.size() != off.back())
+    throw Error("texture cache: internal error: a block of " + std::to_string(block.size()) + " bytes is not the " +
+                std::to_string(off.back()) + "-byte chain of a " + std::to_string(w) + "x" + std::to_string(h) + " image");
+  auto chain = std::make_shared<MipChain>();
+  chain->width = w, chain->height = h, chain->compression = storedBcFormat(channels);
+  for (size_t l = 0; l + 1 < off.size(); ++l) chain->levels.emplace_back(block.begin() + off[l], block.begin() + off[l + 1]);
+  return chain;
+}
+
 }  // namespace
 
 const MipChain& TextureCache::atlas(uint8_t tree, uint32_t node, uint32_t layer) {
@@ -87,6 +111,9 @@ const MipChain& TextureCache::atlas(uint8_t tree, uint32_t node, uint32_t layer)
   const uint32_t block = m.trees[tree].atlasBlocks[size_t(node) * m.layerCount + layer];
   const std::span<const uint8_t> raw = blockBytes(block);
   const uint32_t a = m.params.atlasSize;
+  if (m.encoding == BlockEncoding::S3tc)
+    return store(key, compressedChain(a, a, m.trees[tree].channels(), raw),
+                 {{block, residency_ ? residency_->generation(block) : 0}});
   // The validator fixes an atlas block's size; a wrong one here would be read past its end.
   if (raw.size() != size_t(a) * a * m.trees[tree].channels())
     throw Error("texture cache: internal error: block " + std::to_string(block) +
@@ -104,6 +131,12 @@ const MipChain& TextureCache::image(uint32_t image) {
   if (image >= m.images.size())
     throw Error("texture cache: internal error: image " + std::to_string(image) + " out of range");
   const ImageRecord& r = m.images[image];
+  if (m.encoding == BlockEncoding::S3tc) {
+    // One piece, its block the chain (validated).
+    const uint32_t b = m.pieces.at(r.firstPiece).block;
+    return store(key, compressedChain(r.width, r.height, r.channels, blockBytes(b)),
+                 {{b, residency_ ? residency_->generation(b) : 0}});
+  }
   std::vector<uint8_t> texels(size_t(r.width) * r.height * r.channels);
   std::vector<std::pair<uint32_t, uint64_t>> blocks;
   const size_t rowBytes = size_t(r.width) * r.channels;

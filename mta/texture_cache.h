@@ -2,8 +2,10 @@
 // from paging-file blocks.
 //
 // Implements: atlas(tree, node, layer) (the node's atlas of that layer, A x A) and image(i) (an original scene
-// texture reassembled from its pieces), each converted to RGBA8 (3-channel texels get alpha 255) and
-// reduced to a full mip chain with the documented box filter (raster/texture.h buildMipChainRGBA8).
+// texture reassembled from its pieces). Raw files: converted to RGBA8 (3-channel texels get alpha 255) and
+// reduced to a full mip chain with the documented box filter (raster/texture.h buildMipChainRGBA8). S3TC
+// files: the block is already that chain, encoded (block_encoding.h); it is kept compressed, cut into its
+// levels, and the frame uploads the blocks as they are (the oracle decodes them, GL takes them as they are).
 // Two modes:
 //   - memory-manager mode (residency given): blocks are read from the Residency's resident data; a
 //     chain remembers the generation of every block it was made from, and prune() drops each chain one
@@ -35,8 +37,10 @@ namespace tessera::mta {
 
 struct MipChain {
   uint32_t width = 0, height = 0;
-  std::vector<std::vector<uint8_t>> levels;  // RGBA8, rows bottom first as uploaded
-  uint64_t bytes() const;
+  BcFormat compression = BcFormat::None;     // None: RGBA8 levels; BC1 / BC3: each level's blocks
+  std::vector<std::vector<uint8_t>> levels;  // rows bottom first as uploaded
+  uint64_t bytes() const;                    // as held: compressed bytes for BC1 / BC3
+  uint64_t decodedBytes() const;             // the RGBA8 chain the oracle decodes (= bytes() when None)
 };
 
 class TextureCache {
@@ -48,7 +52,8 @@ class TextureCache {
   void prune();
   const MipChain& atlas(uint8_t tree, uint32_t node, uint32_t layer = 0);
   const MipChain& image(uint32_t image);
-  uint64_t bytes() const { return bytes_; }
+  uint64_t bytes() const { return bytes_; }                 // the chains as held (compressed in S3TC files)
+  uint64_t decodedBytes() const { return decodedBytes_; }   // the same chains as RGBA8
 
  private:
   struct Entry {
@@ -60,7 +65,7 @@ class TextureCache {
                         std::vector<std::pair<uint32_t, uint64_t>> blocks);
   const PagingFile& file_;
   const Residency* residency_;
-  uint64_t fileCacheBytes_, bytes_ = 0;
+  uint64_t fileCacheBytes_, bytes_ = 0, decodedBytes_ = 0;
   std::map<uint64_t, Entry> entries_;
   std::vector<std::pair<uint32_t, std::vector<uint8_t>>> recentBlocks_;  // file mode only
 };

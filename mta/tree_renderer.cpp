@@ -73,7 +73,7 @@ FrameResult TreeRenderer::renderFrame(const Camera& camera) {
   recordFrame(meta, geometry_, r.plan, v, *textures_, rp, rec);
   r.counters = countCommands(rec.list);
   r.drawTexture = rec.drawTexture;
-  r.decodedBytesResident = textures_->bytes();
+  r.decodedBytesResident = textures_->decodedBytes();
   r.recordMs = msSince(t0);
 
   t0 = std::chrono::steady_clock::now();

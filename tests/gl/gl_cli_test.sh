@@ -97,6 +97,33 @@ PY
     [ "$(json_field out.json "['expected_deviation']")" = "3" ] || fail "the entry must cover exactly 3 pixels"
     "$tessera" crosscheck "$repro" --no-bisect --no-expectations > out.json || fail "llvmpipe must draw 96 everywhere"
     ;;
+  an_s3tc_texel_from_a_foreign_tile_row_is_caught_on_softpipe_and_covered_only_by_its_entry)
+    # The same tile-cache alias with the footprint wrapping in s (a level 256 texels wide: tile columns 7
+    # and 0) and crossing a tile row, on a BC1 texture (docs/softpipe-tex-tile-cache.md, "The same alias
+    # in s, on S3TC blocks"). The reproducer's 256x64 texture holds exact endpoint colours only:
+    # (132,130,132) everywhere but texel (224,63), white, which no footprint of a correct LINEAR REPEAT
+    # lookup reaches here (GL 4.6 section 8.14.2), so every pixel must be exactly (132,130,132) with no
+    # class (endpoints are no BC_INTERPOLANT): llvmpipe is. softpipe reads texel (224,63) at 3 pixels;
+    # the entry softpipe-tex-tile-cache-alias-s-wrap-bc1 covers exactly those.
+    repro="$here/../expectations/repro/softpipe-tex-tile-cache-alias-s-wrap-bc1.tframe"
+    rc=0; "$tessera" crosscheck "$repro" --gl-driver softpipe --no-bisect --no-expectations > out.json 2> err.txt || rc=$?
+    if [ "$rc" != 0 ] && grep -qF "softpipe was asked for" err.txt; then echo "SKIP: no softpipe: $(cat err.txt)"; exit 77; fi
+    [ "$rc" = 1 ] || fail "without expectations the alias must fail the verdict (exit $rc)"
+    [ "$(json_field out.json "['unexplained']")" = "3" ] || fail "expected 3 unexplained pixels"
+    python3 - out.json <<'PY' || fail "unexplained pixels must be exactly the three aliased lookups, each exactly (132,130,132) in the oracle"
+import json, sys
+img = json.load(open(sys.argv[1]))['images'][0]
+got = sorted((p['x'], p['y']) for p in img['first_unexplained'])
+assert got == [(27, 16), (27, 17), (27, 18)], got
+assert all(p['oracle'][:3] == [132.0, 130.0, 132.0] and not p['classes'] for p in img['first_unexplained'])
+# softpipe adds the white texel's excess with its bilinear weight xw * (1 - yw): always brighter
+assert all(p['other'][0] > 132.0 for p in img['first_unexplained'])
+PY
+    softpipe_or_skip "$tessera" crosscheck "$repro" --gl-driver softpipe --no-bisect
+    [ "$(json_field out.json "['unexplained']")" = "0" ] || fail "the entry must cover the alias"
+    [ "$(json_field out.json "['expected_deviation']")" = "3" ] || fail "the entry must cover exactly 3 pixels"
+    "$tessera" crosscheck "$repro" --no-bisect --no-expectations > out.json || fail "llvmpipe must draw (132,130,132) everywhere"
+    ;;
   crosscheck_on_softpipe_records_the_driver_and_the_gl_path)
     softpipe_or_skip "$tessera" crosscheck fill_fan --gl-driver softpipe --report r
     [ "$(json_field out.json "['gl_info']['driver']")" = "softpipe" ] || fail "driver not recorded"

@@ -23,6 +23,7 @@ struct GridTreeFile {
     p.tanHalfFov = 0.5;
     p.screenWidth = 256;
     p.dMin = 2.0;
+    p.encoding = BlockEncoding::Raw;  // the edits assume raw block sizes and row pieces
     buildMta(gridScene(8, 8, 32, 2.0f, true, true), p, file.path);
   }
   const MtaMeta& meta() const {

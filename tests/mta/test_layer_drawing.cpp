@@ -76,6 +76,7 @@ void build(const Scene& s, const std::string& path) {
   p.dMin = 0.01;
   p.screenWidth = 128;
   p.threads = 2;
+  p.encoding = BlockEncoding::Raw;  // the tests read exact texels back
   buildMta(s, p, path);
 }
 

@@ -79,6 +79,7 @@ TEST(PagingFileValidation, ImageRowsLongerThanABlockAreStoredOneRowPerBlockAndAc
   p.atlasSize = 64;
   p.border = 2;
   p.dMin = 1000.0;
+  p.encoding = BlockEncoding::Raw;  // row pieces exist in raw files only
   TempFile f("wide.mta");
   buildMta(s, p, f.path);
   EXPECT_EQ(errorOf(f.path), "");

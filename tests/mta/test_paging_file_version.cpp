@@ -1,6 +1,7 @@
-// Paging file format version 2 (docs/mta-format.md, "Versions"): every original image starts blocks of its
-// own. A version 1 file is refused with a message that says to rebuild it, and a file whose metadata
-// packs two images into one block is refused naming the piece, though its checksums are valid.
+// Paging file format versions (docs/mta-format.md, "Versions"): since version 2 every original image starts
+// blocks of its own; version 3 records the block encoding (raw or S3TC) in the header. Version 1 and 2 files
+// are refused with a message that says to rebuild them, an unknown encoding is refused, and a file whose
+// metadata packs two images into one block is refused naming the piece, though its checksums are valid.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -44,6 +45,29 @@ TEST(PagingFileVersion, AVersion1FileIsRefusedWithAMessageToRebuildIt) {
   const std::string m = errorOf(old.path);
   EXPECT_EQ(m.rfind(old.path + ": format version 1: its original images share blocks", 0), 0u) << m;
   EXPECT_NE(m.find("rebuild it with `tessera mta build`"), std::string::npos) << m;
+}
+
+TEST(PagingFileVersion, AVersion2FileIsRefusedWithAMessageToRebuildIt) {
+  TempFile old("v2.mta");
+  std::vector<uint8_t> bytes = testing::readBytes(good().file.path);
+  const uint32_t two = 2;
+  std::memcpy(bytes.data() + 8, &two, 4);
+  testing::fixHeader(bytes);
+  testing::writeBytes(old.path, bytes);
+  const std::string m = errorOf(old.path);
+  EXPECT_EQ(m.rfind(old.path + ": format version 2: its header does not record the block encoding", 0), 0u) << m;
+  EXPECT_NE(m.find("rebuild it with `tessera mta build`"), std::string::npos) << m;
+}
+
+TEST(PagingFileVersion, AnUnknownBlockEncodingInTheHeaderIsRefused) {
+  TempFile bad("encoding.mta");
+  std::vector<uint8_t> bytes = testing::readBytes(good().file.path);
+  const uint32_t two = 2;  // 0 raw and 1 S3TC are the only encodings
+  std::memcpy(bytes.data() + 72, &two, 4);
+  testing::fixHeader(bytes);
+  testing::writeBytes(bad.path, bytes);
+  const std::string m = errorOf(bad.path);
+  EXPECT_EQ(m, bad.path + ": header.encoding: 2 is not 0 (raw) or 1 (S3TC)") << m;
 }
 
 TEST(PagingFileVersion, TwoImagesInOneOriginalBlockAreRefused) {

@@ -204,6 +204,7 @@ TEST(PagingPolicy, AViewThatNeedsOneFacadeImageLoadsOnlyThatImagesBytes) {
   // borders, so no leaf holds two facades; several of the images would fit one 4 · 64² byte block.
   TempFile file("facades.mta");
   BuildParams p;
+  p.encoding = BlockEncoding::Raw;  // the bytes of one image are its texels (S3TC: test_s3tc_blocks.cpp)
   p.atlasSize = 64;
   p.border = 2;
   p.dMin = 1.0;

@@ -2,11 +2,15 @@
 // traversal's fallback (Figure 30), the comparison runs, determinism, and the texel guarantee.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <set>
+#include <variant>
 
 #include "mta/build.h"
 #include "mta/texel_ratio.h"
 #include "mta/tree_renderer.h"
+#include "raster/bc_decode.h"
+#include "raster/cpu_backend.h"
 #include "base/sha256.h"
 #include "mta_test_scene.h"
 #include "wall_tree_file.h"
@@ -18,6 +22,7 @@ using testing::gridScene;
 using testing::TempFile;
 
 using testing::fixture;
+using testing::rawFixture;
 
 // Approach the wall from far away, then pan along it close up, then pull back.
 std::vector<Camera> path() {
@@ -59,9 +64,16 @@ RendererOptions everythingResident() {
   return o;
 }
 
+// One stored atlas of the fixture's RGB tree: the BC1 mip chain of an A x A atlas, 8 bytes per 4 x 4 block
+// of every level down to 1 x 1 (a level below 4 x 4 is one block). Capacity counts these bytes.
 uint64_t atlasBytes() {
   const MtaMeta& m = fixture().tree->meta();
-  return uint64_t(m.params.atlasSize) * m.params.atlasSize * 3;
+  uint64_t bytes = 0;
+  for (uint64_t s = m.params.atlasSize;; s /= 2) {
+    bytes += ((s + 3) / 4) * ((s + 3) / 4) * 8;
+    if (s == 1) break;
+  }
+  return bytes;
 }
 
 TEST(Residency, CapacityIsNeverExceededAndTheRootAtlasStaysResident) {
@@ -84,11 +96,13 @@ TEST(Residency, CapacityIsNeverExceededAndTheRootAtlasStaysResident) {
 }
 
 TEST(Residency, DecodedBytesResidentHoldEveryChainTheFrameUploadsAndOnlyThoseOnTheFirstFrame) {
-  const PagingFile& f = *fixture().tree;
+  // Raw blocks: what is uploaded is the decoded RGBA8 chain itself.
+  const PagingFile& f = *rawFixture().tree;
   LoadBudget b;
   b.kind = LoadBudget::Kind::Blocks;
   b.perFrame = 2;
-  TreeRenderer r(f, options(atlasBytes() * 7, b));
+  const uint64_t rawAtlas = uint64_t(f.meta().params.atlasSize) * f.meta().params.atlasSize * 3;
+  TreeRenderer r(f, options(rawAtlas * 7, b));
   bool first = true;
   for (const Camera& c : path()) {
     const FrameResult fr = r.renderFrame(c);
@@ -167,6 +181,95 @@ TEST(Residency, ACapacityBelowTheRootAtlasIsRefused) {
   ResidencyOptions ro;
   ro.capacityBytes = atlasBytes() - 1;
   EXPECT_THROW(Residency(*fixture().tree, ro), Error);
+}
+
+// S3TC: capacity and bytes resident count the compressed blocks (the thesis's k), so a capacity of exactly
+// one compressed root atlas holds it, and holding it costs those bytes, far below its raw A² · 3.
+TEST(Residency, CapacityAndBytesResidentCountCompressedBlockBytes) {
+  const PagingFile& f = *fixture().tree;
+  ASSERT_EQ(f.meta().encoding, BlockEncoding::S3tc);
+  LoadBudget b;
+  b.kind = LoadBudget::Kind::Blocks;
+  b.perFrame = 1;
+  TreeRenderer r(f, options(atlasBytes(), b));
+  const FrameResult fr = r.renderFrame(path().front());
+  EXPECT_EQ(fr.capacityBytes, atlasBytes());
+  EXPECT_EQ(fr.bytesResident, atlasBytes());
+  EXPECT_EQ(fr.blocksResident, 1u);
+  EXPECT_LT(atlasBytes(), uint64_t(f.meta().params.atlasSize) * f.meta().params.atlasSize * 3 / 4);
+}
+
+// The list `cl` with every S3TC texture replaced by its decoded RGBA8 levels (raster/bc_decode.h called
+// here, outside the backend): the textures the oracle should have sampled. Every command that carries blob
+// bytes (texture, buffer and uniform uploads) is copied with its bytes.
+CommandList withDecodedTextures(const CommandList& cl) {
+  CommandList out;
+  std::map<ResourceId, TextureDesc> compressed;
+  for (const Command& c : cl.commands()) {
+    if (const auto* ct = std::get_if<CreateTexture>(&c); ct && ct->desc.compression != BcFormat::None) {
+      compressed[ct->id] = ct->desc;
+      CreateTexture plain = *ct;
+      plain.desc.compression = BcFormat::None;
+      out.appendRaw(plain);
+    } else if (const auto* up = std::get_if<UploadTexture>(&c)) {
+      UploadTexture u = *up;
+      const auto it = compressed.find(up->id);
+      if (it == compressed.end()) {
+        u.data = out.appendBlob(cl.bytes(up->data));
+      } else {
+        const TextureDesc& d = it->second;
+        u.data = out.appendBlob(decodeBcLevel(d.compression, levelWidth(d, up->level), levelHeight(d, up->level),
+                                              cl.bytes(up->data)));
+      }
+      out.appendRaw(u);
+    } else if (const auto* ub = std::get_if<UploadBuffer>(&c)) {
+      UploadBuffer u = *ub;
+      u.data = out.appendBlob(cl.bytes(ub->data));
+      out.appendRaw(u);
+    } else if (const auto* su = std::get_if<SetUniforms>(&c)) {
+      SetUniforms u = *su;
+      u.data = out.appendBlob(cl.bytes(su->data));
+      out.appendRaw(u);
+    } else {
+      out.appendRaw(c);
+    }
+  }
+  out.setNextId(cl.nextId());
+  return out;
+}
+
+// The S3TC frames upload compressed textures, and what the oracle draws from them is exactly what it draws
+// from the same textures decoded beforehand: decoding is the only step between the blocks and sampling.
+TEST(TreeRenderer, ACompressedFrameEqualsTheFrameDrawnFromTheSameTreesDecodedTextures) {
+  TreeRenderer r(*fixture().tree, everythingResident());
+  size_t compared = 0;
+  for (const Camera& c : path()) {
+    const FrameResult fr = r.renderFrame(c);
+    size_t compressedTextures = 0;
+    for (const Command& cmd : r.lastList().commands())
+      if (const auto* ct = std::get_if<CreateTexture>(&cmd)) compressedTextures += ct->desc.compression != BcFormat::None;
+    ASSERT_GT(compressedTextures, 0u) << "frame " << fr.frame;
+    CpuBackend oracle;
+    oracle.execute(withDecodedTextures(r.lastList()), "decoded");
+    EXPECT_TRUE(oracle.texture(oracle.presented().at(0).texture)->levels[0] == fr.image) << "frame " << fr.frame;
+    ++compared;
+  }
+  EXPECT_GT(compared, 0u);
+}
+
+// Same blocks resident (a block budget and room for all): the S3TC run's cached chains decode to exactly
+// the raw run's RGBA8 chains, texture for texture, so the decoded bytes agree frame by frame.
+TEST(Residency, DecodedBytesResidentOfAnS3tcTreeEqualTheRawTreesChainBytes) {
+  TreeRenderer s3tc(*fixture().tree, everythingResident()), raw(*rawFixture().tree, everythingResident());
+  size_t frames = 0;
+  for (const Camera& c : path()) {
+    const FrameResult a = s3tc.renderFrame(c), b = raw.renderFrame(c);
+    ASSERT_GT(b.decodedBytesResident, 0u);
+    EXPECT_EQ(a.decodedBytesResident, b.decodedBytesResident) << "frame " << a.frame;
+    EXPECT_LT(a.counters.texture_bytes_uploaded, b.counters.texture_bytes_uploaded) << "frame " << a.frame;
+    ++frames;
+  }
+  EXPECT_GT(frames, 0u);
 }
 
 TEST(TreeRenderer, WithOnlyTheRootInMemoryEverythingIsDrawnWithTheRootAtlas) {

@@ -1,5 +1,6 @@
 // The run-time tests' atlas tree: a 12 x 12 wall of textured unit quads in the x-y plane, built with
-// small atlases and a small d_min so the tree is several levels deep; built once per test process.
+// small atlases and a small d_min so the tree is several levels deep; built once per test process, with
+// S3TC blocks (fixture(), as `mta build` stores them) and with raw blocks (rawFixture()).
 #pragma once
 
 #include <memory>
@@ -11,10 +12,11 @@
 namespace tessera::mta::testing {
 
 struct WallTreeFile {
-  TempFile file{"wall.mta"};
+  TempFile file;
   std::unique_ptr<PagingFile> tree;
-  WallTreeFile() {
+  explicit WallTreeFile(BlockEncoding encoding = BlockEncoding::S3tc) : file(encoding == BlockEncoding::Raw ? "wall_raw.mta" : "wall.mta") {
     BuildParams p;
+    p.encoding = encoding;
     p.atlasSize = 64;
     p.border = 2;
     p.dMin = 1.5;
@@ -27,6 +29,11 @@ struct WallTreeFile {
 
 inline WallTreeFile& fixture() {
   static WallTreeFile f;
+  return f;
+}
+
+inline WallTreeFile& rawFixture() {
+  static WallTreeFile f(BlockEncoding::Raw);
   return f;
 }
 

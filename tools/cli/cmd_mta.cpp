@@ -23,7 +23,7 @@ struct MtaBuildArgs {
   std::string scene, out;
   mta::BuildParams p;
   double memoryLimitGiB = 4.0;
-  bool quiet = false;
+  bool quiet = false, raw = false;
   uint64_t maxOutput = 0;  // --max-output; 0: not given (the default is derived from the free space)
   uint64_t fit = 0;        // --fit; 0: not given
   ResourceLimits limits;   // the model budgets (--model-budget-*)
@@ -107,12 +107,15 @@ void addMtaCommands(CLI::App& app) {
                                    "Choose d_min: the finest one (on a grid of two significant digits, from D / "
                                    "--d-min-divisor up) whose file fits this size; excludes --d-min");
   build->add_flag("--quiet", a->quiet, "No progress on stderr");
+  build->add_flag("--raw", a->raw,
+                  "Store raw RGB / RGBA8 texels instead of S3TC mip chains (BC1 for the RGB tree, BC3 for the RGBA "
+                  "tree), for comparison");
   build->footer(
       "Before it creates the output, the build plans the whole tree (image headers only) and computes the file's\n"
-      "exact size: 128-byte header + every atlas (A x A x 3 or 4 bytes per node and layer) and every block of\n"
-      "original images, each padded to 16 bytes + the metadata (nodes, geometry, tables). A plan over\n"
-      "--max-output stops within seconds with exit 2 and no file, naming the size, the nodes and a d_min that\n"
-      "fits. --fit SIZE searches that d_min itself by bisection over plans (same inputs, same choice) and\n"
+      "exact size: 128-byte header + every atlas (the BC1 / BC3 mip chain of an A x A atlas per node and layer,\n"
+      "or A x A x 3 or 4 bytes with --raw) and every block of original images, each padded to 16 bytes, + the\n"
+      "metadata (nodes, geometry, tables). A plan over --max-output stops within seconds with exit 2 and no\n"
+      "file, naming the size, the nodes and a d_min that fits. --fit SIZE searches that d_min itself by bisection over plans (same inputs, same choice) and\n"
       "reports it in build.fit of the JSON. Progress (unless --quiet) shows the file written of the total, and\n"
       "the time left. docs/mta-build.md");
   build->callback([a, fitOpt, build] {
@@ -121,6 +124,7 @@ void addMtaCommands(CLI::App& app) {
                   "d_min --fit may choose)");
     a->p.memoryLimit = uint64_t(a->memoryLimitGiB * double(1ull << 30));
     a->p.progress = !a->quiet;
+    a->p.encoding = a->raw ? mta::BlockEncoding::Raw : mta::BlockEncoding::S3tc;
     a->p.validate();
     auto model = std::make_shared<const model::Model>(model::loadModel(a->scene, a->limits));
     const mta::Scene scene = mta::sceneFromModel(model);
