@@ -4,6 +4,10 @@
 
 namespace tessera {
 
+uint16_t texelIntervalClass(const TextureDesc& d) {
+  return d.compression != BcFormat::None ? uint16_t(kBcInterpolant) : uint16_t(kInputInterval);
+}
+
 std::string_view ambiguityClassName(int bit) {
   static constexpr std::string_view kNames[kClassCount] = {
       "EDGE_TIE",         "CLIP_EDGE", "LOD_NEAR_SWITCH",  "SUBTEXEL_NEAR_HALF", "LAYER_TIE",     "DEPTH_NEAR_EQUAL",

@@ -50,6 +50,12 @@ enum AmbiguityClass : uint16_t {
 };
 std::string_view ambiguityClassName(int bit);
 
+struct TextureDesc;
+// The class of a pixel whose sampled texel differs between a texture's lower and upper images: for an
+// S3TC texture those bounds are the decoder's freedom at upload (BC_INTERPOLANT), for any other they
+// are the freedoms of the rendering that produced it in this frame (INPUT_INTERVAL).
+uint16_t texelIntervalClass(const TextureDesc& d);
+
 // A shared-edge constraint carried by a candidate: the candidate assumed that the triangle on `side`
 // of the edge `key` (a hash of its two snapped endpoints) did (`covered`) or did not produce the
 // fragment. A later triangle of the same draw near the same edge on the other side must do the

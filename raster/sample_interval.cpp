@@ -210,9 +210,8 @@ void intervalPass(const TexUnit& u, float s, float t, float r, bool array, const
       float v[1][4];
       sampleN(u, pv, 1, &s, &t, &layerOracle, v);
       sp.bound = b;
-      // An S3TC texture's intervals are its decoder freedom (upload), not a rendering's.
       if (!sameValue(v[0], nominal))
-        classes |= u.tex->desc.compression != BcFormat::None ? uint16_t(kBcInterpolant) : uint16_t(kInputInterval);
+        classes |= texelIntervalClass(u.tex->desc);
     }
   }
   // GL 4.6 §8.14: with mag LINEAR and min NEAREST_MIPMAP_NEAREST or NEAREST_MIPMAP_LINEAR the switch

@@ -2,7 +2,8 @@
 // integer-coordinate read of GL 4.6 §8.9 / §11.1.3.2 (texelFetch), with the oracle's defined value for
 // coordinates outside the texture (the twins test against textureSize and return vec4(0)).
 // Provenance: a texture rendered in this frame is read through its lower / upper interval images in
-// the bound runs, and the pixels where those differ from its value are classed INPUT_INTERVAL.
+// the bound runs, and the pixels where those differ from its value are classed by texelIntervalClass()
+// (INPUT_INTERVAL, or BC_INTERPOLANT for an S3TC texture).
 #include <cstring>
 
 #include "raster/provenance.h"
@@ -51,7 +52,7 @@ void fetchQuad2DArray(const TexUnit& u, const int64_t x[4], const int64_t y[4], 
     float b[4];
     decode(d.format, bound.texel(0, li, xi, yi), b);
     if (std::memcmp(b, out[p], sizeof b) != 0)
-      sp.classes[size_t(p)] |= d.compression != BcFormat::None ? uint16_t(kBcInterpolant) : uint16_t(kInputInterval);
+      sp.classes[size_t(p)] |= texelIntervalClass(d);
     std::memcpy(out[p], b, sizeof b);
   }
 }
