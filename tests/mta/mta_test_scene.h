@@ -5,11 +5,36 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <initializer_list>
 #include <string>
 
 #include "mta/scene.h"
 
 namespace tessera::mta::testing {
+
+// Appends the square [x0, x0 + size] x [y0, y0 + size] at height z to `g` as two opaque triangles
+// (corners 0,1,2 and 0,2,3, counter-clockwise seen from +z), each its own source triangle. Layer l gets
+// texture textures[l] (-1: none) and texcoords (0,0) .. (1,1) plus uvOffsets[l] (zero when not given);
+// `textures` names every layer of g.
+inline void addSquare(Geometry& g, float x0, float y0, float size, float z, std::initializer_list<int32_t> textures,
+                      std::initializer_list<glm::vec2> uvOffsets = {}) {
+  const glm::vec3 p[4] = {{x0, y0, z}, {x0 + size, y0, z}, {x0 + size, y0 + size, z}, {x0, y0 + size, z}};
+  const glm::vec2 t[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  const int tri[2][3] = {{0, 1, 2}, {0, 2, 3}};
+  EXPECT_EQ(textures.size(), g.layers.size()) << "addSquare names every layer's texture";
+  for (int k = 0; k < 2; ++k) {
+    for (int i = 0; i < 3; ++i) g.positions.push_back(p[tri[k][i]]);
+    size_t l = 0;
+    for (const int32_t texture : textures) {
+      const glm::vec2 off = l < uvOffsets.size() ? uvOffsets.begin()[l] : glm::vec2(0.0f);
+      for (int i = 0; i < 3; ++i) g.layers[l].uv.push_back(t[tri[k][i]] + off);
+      g.layers[l].texture.push_back(texture);
+      ++l;
+    }
+    g.source.push_back(uint32_t(g.source.size()));
+    g.alpha.push_back(0);
+  }
+}
 
 // A grid of nx x ny unit quads (2 triangles each) in the x-y plane, each with its own size x size texture
 // repeated `repeats` times, texcoords offset by the quad index (so integer offsets differ). Optionally a

@@ -22,6 +22,7 @@
 namespace tessera::mta {
 namespace {
 
+using testing::addSquare;
 using testing::TempFile;
 
 // A wall of 12 x 12 unit quads at z = 0 whose textures repeat every three quads, so that many leaves
@@ -39,18 +40,7 @@ Scene sharedTextureScene(bool decals) {
     s.textures.push_back(SceneTexture{uint32_t(t), model::Wrap::Repeat, model::Wrap::Repeat});
   }
   auto quad = [&](float x0, float y0, float size, float z, int32_t texture) {
-    const glm::vec3 p[4] = {{x0, y0, z}, {x0 + size, y0, z}, {x0 + size, y0 + size, z}, {x0, y0 + size, z}};
-    const glm::vec2 t[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-    const int tri[2][3] = {{0, 1, 2}, {0, 2, 3}};
-    for (int k = 0; k < 2; ++k) {
-      for (int i = 0; i < 3; ++i) {
-        g.positions.push_back(p[tri[k][i]]);
-        g.layers[0].uv.push_back(t[tri[k][i]]);
-      }
-      g.layers[0].texture.push_back(texture);
-      g.source.push_back(uint32_t(g.source.size()));
-      g.alpha.push_back(0);
-    }
+    addSquare(g, x0, y0, size, z, {texture});
   };
   for (int q = 0; q < 144; ++q) quad(float(q % 12), float(q / 12), 1.0f, 0.0f, q % 3);
   for (int q = 0; q < 25; ++q)

@@ -23,6 +23,7 @@
 namespace tessera::mta {
 namespace {
 
+using testing::addSquare;
 using testing::TempFile;
 
 constexpr std::array<uint8_t, 3> kBaseA{200, 100, 50}, kBaseB{40, 80, 160}, kLight{128, 0, 255};
@@ -42,21 +43,11 @@ Scene twoQuads(bool lightMap) {
     s.textures.push_back(SceneTexture{i, model::Wrap::ClampToEdge, model::Wrap::ClampToEdge});
   }
   for (int q = 0; q < 2; ++q) {
-    const float x = float(q);
-    const glm::vec3 p[4] = {{x, 0, 0}, {x + 1, 0, 0}, {x + 1, 1, 0}, {x, 1, 0}};
-    const glm::vec2 t[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-    const int tri[2][3] = {{0, 1, 2}, {0, 2, 3}};
-    for (int k = 0; k < 2; ++k) {
-      for (int i = 0; i < 3; ++i) {
-        g.positions.push_back(p[tri[k][i]]);
-        g.layers[0].uv.push_back(t[tri[k][i]]);
-        if (lightMap) g.layers[1].uv.push_back(t[tri[k][i]]);  // the light map on texcoord set 0, as the city's
-      }
-      g.layers[0].texture.push_back(q);
-      if (lightMap) g.layers[1].texture.push_back(q == 0 ? 2 : -1);
-      g.source.push_back(uint32_t(g.source.size()));
-      g.alpha.push_back(0);
-    }
+    // The light map on texcoord set 0, as the city's.
+    if (lightMap)
+      addSquare(g, float(q), 0, 1, 0, {q, q == 0 ? 2 : -1});
+    else
+      addSquare(g, float(q), 0, 1, 0, {q});
   }
   s.loadImage = [](uint32_t i) {
     const std::array<uint8_t, 3> c = i == 0 ? kBaseA : i == 1 ? kBaseB : kLight;
@@ -234,23 +225,8 @@ Scene sharedBase(int32_t b1, glm::vec2 bOffset, model::Wrap wrap) {
   g.layers.resize(2);
   s.images = {SceneImage{16, 16, "base.png"}, SceneImage{16, 16, "light1.png"}, SceneImage{16, 16, "light2.png"}};
   s.textures = {SceneTexture{0}, SceneTexture{1, wrap, wrap}, SceneTexture{2, wrap, wrap}};
-  for (int q = 0; q < 2; ++q) {
-    const float x = float(q);
-    const glm::vec3 p[4] = {{x, 0, 0}, {x + 1, 0, 0}, {x + 1, 1, 0}, {x, 1, 0}};
-    const glm::vec2 t[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-    const int tri[2][3] = {{0, 1, 2}, {0, 2, 3}};
-    for (int k = 0; k < 2; ++k) {
-      for (int i = 0; i < 3; ++i) {
-        g.positions.push_back(p[tri[k][i]]);
-        g.layers[0].uv.push_back(t[tri[k][i]]);
-        g.layers[1].uv.push_back(t[tri[k][i]] + (q == 1 ? bOffset : glm::vec2(0.0f)));
-      }
-      g.layers[0].texture.push_back(0);
-      g.layers[1].texture.push_back(q == 0 ? 1 : b1);
-      g.source.push_back(uint32_t(g.source.size()));
-      g.alpha.push_back(0);
-    }
-  }
+  for (int q = 0; q < 2; ++q)
+    addSquare(g, float(q), 0, 1, 0, {0, q == 0 ? 1 : b1}, {glm::vec2(0.0f), q == 1 ? bOffset : glm::vec2(0.0f)});
   s.loadImage = [](uint32_t) {
     model::Image img;
     img.width = img.height = 16;
