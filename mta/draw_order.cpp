@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <set>
 #include <utility>
 
 namespace tessera::mta {
@@ -59,6 +60,12 @@ void groupDrawsByTexture(FramePlan& plan) {
     lastRank = rank;
   }
   draws = std::move(out);
+}
+
+uint32_t textureKeyCount(const FramePlan& plan) {
+  std::set<std::pair<uint64_t, int32_t>> keys;
+  for (const PlannedDraw& d : plan.draws) keys.insert(textureKey(d));
+  return uint32_t(keys.size());
 }
 
 }  // namespace tessera::mta

@@ -36,4 +36,8 @@ namespace tessera::mta {
 // unchanged, and every triangle drawn before is drawn exactly once after. Idempotent.
 void groupDrawsByTexture(FramePlan& plan);
 
+// The number of distinct texture keys among plan.draws (as above): once grouped, the frame binds at most
+// this many textures on unit 0, and at most this many on unit 1.
+uint32_t textureKeyCount(const FramePlan& plan);
+
 }  // namespace tessera::mta

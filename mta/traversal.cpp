@@ -222,6 +222,7 @@ struct Planner {
   const RuntimeGeometry& g;
   const std::function<bool(uint32_t)>& resident;
   FramePlan& plan;
+  std::span<const NodeRef> forced;  // sorted
   std::vector<PlannedDraw> white;  // untextured triangles, drawn last with the white texture
 
   bool atlasResident(size_t tree, uint32_t n) const {
@@ -294,6 +295,16 @@ struct Planner {
       useAtlas = true;
       ++plan.coarserThanNeeded;
     }
+    if (!useAtlas && atlasResident(tree, n)) {
+      const double ratio = d * distanceFactor(w.ctx, node.bounds) / (double(node.minDistance) * w.ctx.minDistanceScale);
+      if (std::binary_search(forced.begin(), forced.end(), NodeRef{uint8_t(tree), n})) {
+        useAtlas = true;
+        ++plan.coarsenedForBinds;
+        plan.worstBindRatio = std::min(plan.worstBindRatio, ratio);
+      } else {
+        plan.refined.push_back({NodeRef{uint8_t(tree), n}, ratio});
+      }
+    }
     if (useAtlas) {
       ++plan.atlasNodes;
       atlasLeaves(tree, n, n);
@@ -331,10 +342,11 @@ std::vector<BlockPriority> usagePriorities(const MtaMeta& meta, const BlockIndex
 }
 
 FramePlan planFrame(const MtaMeta& meta, const RuntimeGeometry& geometry, const BlockIndex& index, const ViewContext& ctx,
-                    RenderMode mode, const std::function<bool(uint32_t)>& resident) {
+                    RenderMode mode, const std::function<bool(uint32_t)>& resident,
+                    std::span<const NodeRef> drawWithAtlas) {
   FramePlan plan;
   const Walker w{meta, index, ctx};
-  Planner p{w, geometry, resident, plan, {}};
+  Planner p{w, geometry, resident, plan, drawWithAtlas, {}};
   for (size_t t = 0; t < meta.trees.size(); ++t) {
     if (meta.trees[t].nodes.empty()) continue;
     switch (mode) {

@@ -17,13 +17,14 @@
 // - the draw plan: which node atlases and which original textures draw which triangle ranges, for the
 //   atlas tree and for the comparison runs of the thesis's §4.7.2 (original textures for every visible
 //   leaf; one dummy texture for everything).
-// Does not implement: loading (residency.h), the order draws are recorded in (draw_order.h: planFrame
+// Does not implement: bind budgets (bind_budget.h), loading (residency.h), the order draws are recorded in (draw_order.h: planFrame
 // emits them leaf by leaf, untextured ones last), command recording (frame_recorder.h).
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -112,17 +113,41 @@ struct PlannedDraw {
   int32_t texture1 = -1;  // Original: scene texture of layer 1 (runtime_geometry.h TextureRun), -1 = none
 };
 
+// A node of one of the file's trees.
+struct NodeRef {
+  uint8_t tree = 0;
+  uint32_t node = 0;
+  friend bool operator==(const NodeRef&, const NodeRef&) = default;
+  friend auto operator<=>(const NodeRef&, const NodeRef&) = default;
+};
+
+// A node the AtlasTree traversal refined (drawn through its children, or a leaf drawn with its original
+// textures) although its own atlas is resident: a node a bind budget may draw with its atlas instead
+// (bind_budget.h). ratio = d · factor / (minDistance · scale), below 1 (the distance test failed): drawn
+// with its atlas, its texels are magnified up to 1/ratio times more than τ allows.
+struct RefinedNode {
+  NodeRef ref;
+  double ratio = 0.0;
+};
+
 struct FramePlan {
   std::vector<PlannedDraw> draws;
   uint32_t atlasNodes = 0;       // nodes drawn with their atlas
   uint32_t originalLeaves = 0;   // leaves drawn with original textures
   uint32_t coarserThanNeeded = 0;  // nodes drawn with their atlas only because refinement was impossible (Figure 30)
+  uint32_t coarsenedForBinds = 0;  // nodes drawn with their atlas only because of a bind budget (bind_budget.h)
+  double worstBindRatio = 1.0;     // the least RefinedNode::ratio among those (1 when none)
   uint32_t leavesDrawn = 0;
   uint64_t trianglesDrawn = 0;
+  std::vector<RefinedNode> refined;  // AtlasTree mode, in traversal order
 };
 
 // resident(block): whether a block is in memory (AtlasTree mode; ignored by the other modes).
+// drawWithAtlas (AtlasTree mode, sorted): nodes drawn with their resident atlas even where the distance
+// test asks for refinement, counted in coarsenedForBinds; bind_budget.h chooses them. Each must be a
+// node the traversal reaches with its atlas resident (an earlier plan's RefinedNode); others are ignored.
 FramePlan planFrame(const MtaMeta& meta, const RuntimeGeometry& geometry, const BlockIndex& index, const ViewContext& ctx,
-                    RenderMode mode, const std::function<bool(uint32_t)>& resident);
+                    RenderMode mode, const std::function<bool(uint32_t)>& resident,
+                    std::span<const NodeRef> drawWithAtlas = {});
 
 }  // namespace tessera::mta

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstring>
 
+#include "mta/bind_budget.h"
 #include "raster/cpu_backend.h"
 
 namespace tessera::mta {
@@ -18,6 +19,8 @@ TreeRenderer::TreeRenderer(const PagingFile& file, RendererOptions options)
       options_(options),
       geometry_(buildRuntimeGeometry(file.meta())),
       index_(buildBlockIndex(file.meta(), kRecordedLayers)) {
+  if (options_.maxBinds != 0 && !options_.groupBinds)
+    throw Error("renderer: a bind cap counts the binds of draws grouped by texture; it cannot be used with leaf-by-leaf draws");
   if (options_.width == 0 || options_.height == 0 || options_.width > 16384 || options_.height > 16384)
     throw Error("renderer: frame size " + std::to_string(options_.width) + "x" + std::to_string(options_.height) + " is outside 1..16384");
   // Requests and pins follow what the recorder draws, never an option: blocks of other layers are dead weight.
@@ -61,7 +64,7 @@ FrameResult TreeRenderer::renderFrame(const Camera& camera) {
     r.blocksResident = residency_->blocksResident();
     r.capacityBytes = residency_->capacity();
   }
-  r.plan = planFrame(meta, geometry_, index_, ctx, options_.mode, resident);
+  r.plan = planFrameWithinBinds(meta, geometry_, index_, ctx, options_.mode, resident, options_.maxBinds);
   if (options_.groupBinds) groupDrawsByTexture(r.plan);
   r.updateMs = msSince(t0);
 
@@ -110,6 +113,9 @@ nlohmann::json toJson(const FrameResult& r, RenderMode mode) {
   j["nodes_with_atlas"] = r.plan.atlasNodes;
   j["nodes_with_original_textures"] = r.plan.originalLeaves;
   j["nodes_coarser_than_needed"] = r.plan.coarserThanNeeded;
+  j["nodes_coarsened_for_binds"] = r.plan.coarsenedForBinds;
+  // null when no node was coarsened: a ratio of 1 would read as "coarsened, at no cost".
+  j["bind_cap_worst_ratio"] = r.plan.coarsenedForBinds ? nlohmann::json(r.plan.worstBindRatio) : nlohmann::json(nullptr);
   j["leaves_drawn"] = r.plan.leavesDrawn;
   if (mode == RenderMode::AtlasTree) {
     j["blocks_resident"] = r.blocksResident;

@@ -36,6 +36,9 @@ struct RendererOptions {
   // Record the draws grouped by texture (draw_order.h): each texture bound once a frame. false keeps
   // planFrame's leaf-by-leaf order (`--no-group-binds`), for comparison. Every mode, the comparison runs too.
   bool groupBinds = true;
+  // AtlasTree mode: at most this many texture binds a frame (bind_budget.h), by drawing refined nodes
+  // with their resident atlases; 0 = no cap (the thesis). Needs groupBinds, which it counts on.
+  uint32_t maxBinds = 0;
   int threads = 0;                // oracle threads; the bytes never depend on it
 };
 

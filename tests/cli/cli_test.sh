@@ -425,6 +425,28 @@ for a, b in zip(g["frames"], u["frames"]):
         assert a[k] == b[k], (a["frame"], k, a[k], b[k])
     assert a["texture_binds"] <= b["texture_binds"], (a["frame"], a["texture_binds"], b["texture_binds"])
 PY
+    # --max-binds: the cap is met in every frame, the nodes it coarsened are counted, the rest is the same.
+    cap=$(python3 -c "import json,sys; print(max(2, int(json.load(open(sys.argv[1]))['summary']['texture_binds_max']) - 2))" render/frames.json)
+    "$tessera" mta render tree.mta --frames 40 --size 160x120 --capacity 8 --budget 2blocks --save-every 0 --max-binds "$cap" \
+      -o render3 --quiet > /dev/null
+    python3 - render/frames.json render3/frames.json "$cap" <<'PY' || fail "--max-binds $cap is not met or not counted"
+import json, sys
+g, c = (json.load(open(p)) for p in sys.argv[1:3])
+cap = int(sys.argv[3])
+assert c["options"]["max_binds"] == cap and g["options"]["max_binds"] == 0, c["options"]
+s = c["summary"]
+assert s["frames_with_nodes_coarsened_for_binds"] > 0 and 0 <= s["bind_cap_worst_ratio"] < 1, s  # 0: the eye inside the node's box
+assert g["summary"]["bind_cap_worst_ratio"] is None, g["summary"]
+for a, b in zip(g["frames"], c["frames"]):
+    assert b["texture_binds"] <= cap or s["frames_over_max_binds"] > 0, (b["frame"], b["texture_binds"])
+    if a["texture_binds"] <= cap:
+        assert b["nodes_coarsened_for_binds"] == 0 and a["image_sha256"] == b["image_sha256"], b["frame"]
+    assert b["triangles_drawn"] == a["triangles_drawn"], b["frame"]
+PY
+    if "$tessera" mta render tree.mta --max-binds 8 --no-group-binds -o render4 --quiet > /dev/null 2> cap.err; then
+      fail "--max-binds with --no-group-binds accepted"
+    fi
+    grep -q -- "--no-group-binds" cap.err || fail "the refusal does not name --no-group-binds: $(cat cap.err)"
     "$tessera" texel tree.mta --frames 20 --size 160x120 --budget unlimited --capacity 512 --save-every 10 -o texel --quiet > texel.json
     [ "$(json_field texel.json "['magnification_violations_when_every_needed_block_resident']")" = "0" ] || fail "violations: $(cat texel.json)"
     for f in texel.json histogram.png texel_0000.png texel_0019.png texel_axis_0000.png; do [ -s "texel/$f" ] || fail "texel did not write $f"; done

@@ -1,5 +1,6 @@
 // `tessera mta render`: the atlas tree at run time (thesis §4.4, §4.6) over a camera path with the
 // memory manager: per-frame JSON, frame images and plot.png (docs/mta-render.md).
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -49,10 +50,16 @@ nlohmann::json runMtaRender(const PathRunArgs& a) {
   const auto [timeMax, timeMean] = maxMean(column(rows, "frame_time_ms"));
   const auto [loadedMax, loadedMean] = maxMean(column(rows, "blocks_loaded"));
   const auto [decodedMax, decodedMean] = maxMean(column(rows, "decoded_bytes_resident"));
-  uint64_t framesMissing = 0, loadedTotal = 0;
+  uint64_t framesMissing = 0, loadedTotal = 0, framesCapped = 0, framesOverCap = 0;
+  double worstCapRatio = 1.0;
   for (const auto& r : rows) {
     framesMissing += r["needed_blocks_missing"].get<uint64_t>() > 0 ? 1 : 0;
     loadedTotal += r["blocks_loaded"].get<uint64_t>();
+    if (r["nodes_coarsened_for_binds"].get<uint64_t>() > 0) {
+      ++framesCapped;
+      worstCapRatio = std::min(worstCapRatio, r["bind_cap_worst_ratio"].get<double>());
+    }
+    if (o.maxBinds != 0 && r["texture_binds"].get<uint64_t>() > o.maxBinds) ++framesOverCap;
   }
   nlohmann::json summary = {
       {"frames", rows.size()},
@@ -73,6 +80,9 @@ nlohmann::json runMtaRender(const PathRunArgs& a) {
       {"blocks_loaded_total", loadedTotal},
       {"blocks_loaded_max_per_frame", loadedMax},
       {"frames_with_needed_blocks_missing", framesMissing},
+      {"frames_with_nodes_coarsened_for_binds", framesCapped},
+      {"bind_cap_worst_ratio", framesCapped ? nlohmann::json(worstCapRatio) : nlohmann::json(nullptr)},
+      {"frames_over_max_binds", framesOverCap},
       {"frame_time_ms_mean", timeMean},
       {"frame_time_ms_max", timeMax}};
   nlohmann::json doc = {{"options", optionsJson(a, o, path)}, {"summary", summary}, {"frames", rows}};
@@ -87,7 +97,8 @@ nlohmann::json runMtaRender(const PathRunArgs& a) {
   verify::LineChart c2{"Nodes drawn", "frame", "nodes",
                        {{"with atlas", column(rows, "nodes_with_atlas"), kGreen, false, 2},
                         {"with original textures", column(rows, "nodes_with_original_textures"), kPurple, false, 1},
-                        {"coarser than needed", column(rows, "nodes_coarser_than_needed"), kRed, true, 1}}};
+                        {"coarser than needed", column(rows, "nodes_coarser_than_needed"), kRed, true, 1},
+                        {"coarsened for --max-binds", column(rows, "nodes_coarsened_for_binds"), kOrange, true, 1}}};
   panels.push_back(verify::drawLineChart(c2));
   std::vector<double> mib = column(rows, "bytes_resident");
   for (double& v : mib) v /= 1048576.0;

@@ -50,6 +50,13 @@ void addPathRunOptions(CLI::App* cmd, PathRunArgs& a, bool withMemory) {
                 "Record the draws leaf by leaf as the traversal emits them, binding a leaf's original textures again for "
                 "every leaf; by default draws are grouped by texture, so each texture is bound once a frame (same triangles "
                 "and depth test; only pixels where two fragments tie in depth can differ, docs/mta-render.md)");
+  cmd->add_option("--max-binds", a.maxBinds,
+                  "Cap texture binds per frame at N by drawing the refined nodes that miss the distance test by the least "
+                  "with their resident atlases instead (0 = no cap, the thesis). Gives up the tau guarantee on those nodes: "
+                  "frames.json counts them (nodes_coarsened_for_binds) and how far they fall short (bind_cap_worst_ratio); "
+                  "docs/mta-render.md")
+      ->check(CLI::Range(0u, 1000000u))
+      ->capture_default_str();
   addThreadsOption(cmd, a.threads, "Oracle threads; images never depend on it");
   cmd->add_option("--save-every", a.saveEvery, "Write every N-th frame as PNG (0 = none); the last frame is always written")
       ->capture_default_str();
@@ -86,6 +93,9 @@ mta::RendererOptions rendererOptions(const PathRunArgs& a, mta::RenderMode mode)
   o.tau = a.tau;
   o.bound = a.thesisDistance ? mta::DistanceBound::Thesis : mta::parseDistanceBound(a.distanceBound, "--distance-bound");
   o.groupBinds = !a.noGroupBinds;
+  if (a.maxBinds != 0 && a.noGroupBinds)
+    throw Error("--max-binds counts the binds of draws grouped by texture: it cannot be combined with --no-group-binds");
+  o.maxBinds = a.maxBinds;
   o.threads = a.threads;
   if (!kCapacityMiB.contains(a.capacityMiB))
     throw Error("--capacity must be a number of MiB " + kCapacityMiB.describe());
@@ -113,7 +123,8 @@ nlohmann::json optionsJson(const PathRunArgs& a, const mta::RendererOptions& o, 
           {"queue", o.residency.maxQueue},
           {"tau", o.tau},
           {"distance_bound", mta::distanceBoundName(o.bound)},
-          {"draw_order", o.groupBinds ? "grouped by texture" : "leaf by leaf (--no-group-binds)"}};
+          {"draw_order", o.groupBinds ? "grouped by texture" : "leaf by leaf (--no-group-binds)"},
+          {"max_binds", o.maxBinds}};
 }
 
 void writeFramePng(const std::string& path, uint32_t w, uint32_t h, const std::vector<uint8_t>& bottomUp) {

@@ -29,6 +29,7 @@ struct PathRunArgs {
   bool thesisDistance = false;
   std::string distanceBound = "node";
   bool noGroupBinds = false;  // planFrame's leaf-by-leaf draw order (RendererOptions::groupBinds off)
+  uint32_t maxBinds = 0;      // RendererOptions::maxBinds (0 = no cap)
   int threads = 0;
   uint32_t saveEvery = 25;    // 0 = no frame images
   bool recordFrames = false;  // mta render: a .tframe next to every saved frame image (--record)
