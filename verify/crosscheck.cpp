@@ -58,7 +58,7 @@ Side runBoth(const CommandList& list, std::string_view name, const CrosscheckOpt
     s.images.push_back(std::move(v));
   }
   if (o.expectations && o.condition)
-    s.expectations = applyExpectations(s.images, list, o.expectations->matching(*o.condition, name), o.threads, o.limits);
+    s.expectations = applyExpectations(s.images, list, o.expectations->matching(*o.condition, name, &list), o.threads, o.limits);
   for (const ImageVerdict& v : s.images) s.passed = s.passed && v.judgement.passed();
   return s;
 }

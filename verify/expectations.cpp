@@ -12,9 +12,11 @@
 #include <sstream>
 
 #include "base/error.h"
+#include "base/sha256.h"
 #include "gl/gl_backend.h"
 #include "raster/cpu_backend.h"
 #include "raster/image_io.h"
+#include "raster/serialize.h"
 #include "verify/crosscheck.h"
 
 namespace tessera::verify {
@@ -100,8 +102,10 @@ RunCondition runConditionOf(const gl::GlBackend& gl) {
   return c;
 }
 
-std::vector<const Expectation*> ExpectationSet::matching(const RunCondition& run, std::string_view frame) const {
+std::vector<const Expectation*> ExpectationSet::matching(const RunCondition& run, std::string_view frame,
+                                                         const CommandList* list) const {
   const std::string frameFile = std::filesystem::path(frame).filename().string();
+  std::string listSha;  // computed once, for the first entry that asks
   std::vector<const Expectation*> out;
   for (const Expectation& e : entries) {
     if (e.implementation != run.implementation) continue;
@@ -110,6 +114,11 @@ std::vector<const Expectation*> ExpectationSet::matching(const RunCondition& run
     if (!e.lpThreads.matches(run.lpThreads)) continue;
     const std::string entryFile = std::filesystem::path(e.frame).filename().string();
     if (e.frame != frame && !(e.frame.ends_with(".tframe") && entryFile == frameFile)) continue;
+    if (!e.frameSha256.empty()) {
+      if (!list) continue;
+      if (listSha.empty()) listSha = sha256Hex(encodeFrame(*list));
+      if (listSha != e.frameSha256) continue;
+    }
     out.push_back(&e);
   }
   return out;
@@ -130,7 +139,7 @@ ExpectationSet parseExpectations(const nlohmann::json& doc, const std::string& f
     std::string where = file + ": entry " + std::to_string(index++);
     if (!j.is_object()) throw Error(where + ": must be an object");
     static const std::set<std::string> known = {"id",    "implementation", "versions", "condition", "frame",
-                                                "draw",  "pixels",         "reason",   "reproducer"};
+                                                "draw",  "pixels",         "reason",   "reproducer", "frame_sha256"};
     for (const auto& [key, value] : j.items())
       if (!known.count(key)) throw Error(where + ": unknown field '" + key + "'");
     auto str = [&](const char* name) {
@@ -167,6 +176,13 @@ ExpectationSet parseExpectations(const nlohmann::json& doc, const std::string& f
       }
     }
     e.frame = str("frame");
+    if (j.contains("frame_sha256")) {
+      e.frameSha256 = str("frame_sha256");
+      if (e.frameSha256.size() != 64 || !std::all_of(e.frameSha256.begin(), e.frameSha256.end(), [](char ch) {
+            return (ch >= '0' && ch <= '9') || (ch >= 'a' && ch <= 'f');
+          }))
+        throw Error(where + ": field 'frame_sha256' must be 64 lowercase hex digits (sha256sum of the .tframe)");
+    }
     if (!j.contains("draw")) throw Error(where + ": field 'draw' is required (a draw index, or null for the frame)");
     if (!j["draw"].is_null()) {
       if (!j["draw"].is_number_integer() || j["draw"].get<int64_t>() < 0)

@@ -63,6 +63,10 @@ struct Expectation {
   std::optional<bool> strict;  // condition.strict; nullopt = either
   IntCondition lpThreads;      // condition.lp_threads
   std::string frame;           // a scene name or a .tframe path; matched by name or file name
+  // frame_sha256: when set (64 lowercase hex digits), the frame must also be exactly this command list:
+  // the SHA-256 of its .tframe encoding (raster/serialize.h encodeFrame, the bytes writeFrame stores).
+  // For frames that tools write under generic names (mta render --record: frame_0000.tframe).
+  std::string frameSha256;
   std::optional<size_t> draw;  // draw index (as crosscheck's bisection counts); nullopt = whole frame
   uint64_t pixels = 0;         // the most pixels this entry may cover in one run
   std::string reason;          // why: the analysis, or where it is (docs/...)
@@ -72,8 +76,10 @@ struct Expectation {
 struct ExpectationSet {
   std::string file;
   std::vector<Expectation> entries;
-  // The entries whose implementation, versions, condition and frame match.
-  std::vector<const Expectation*> matching(const RunCondition& run, std::string_view frame) const;
+  // The entries whose implementation, versions, condition and frame match. `list` is the frame's command
+  // list, which entries with frameSha256 need; without it they never match.
+  std::vector<const Expectation*> matching(const RunCondition& run, std::string_view frame,
+                                           const CommandList* list = nullptr) const;
 };
 
 // Throws Error("<file>: entry <i> (<id>): field '<name>': <reason>") for anything out of format.

@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
+#include "base/sha256.h"
 #include "raster/cpu_backend.h"
 #include "raster/image_io.h"
 #include "raster/serialize.h"
@@ -112,6 +115,29 @@ TEST(Expectations, MalformedEntriesAreRefusedNamingTheFileEntryAndField) {
   EXPECT_NE(errorOf({{"schema", 1}, {"entries", {entry(), entry()}}}).find("entry 1 (e1): field 'id': duplicate"),
             std::string::npos);
   EXPECT_NE(errorOf({{"entries", nlohmann::json::array()}}).find("field 'schema'"), std::string::npos);
+}
+
+// frame_sha256 is the sha256sum of the .tframe file: the oracle hashes the list's encoding, which must
+// therefore be the file's bytes (a read frame encodes back to them).
+TEST(Expectations, AnEntryWithAFrameHashMatchesOnlyThatExactFrameUnderItsName) {
+  const std::string dir = std::string(TESSERA_SOURCE_DIR) + "/tests/expectations/repro/";
+  const std::string f1 = dir + "softpipe-tex-tile-cache-alias.tframe", f2 = dir + "softpipe-tex-tile-cache-alias-s-wrap-bc1.tframe";
+  std::ifstream in(f1, std::ios::binary);
+  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_FALSE(bytes.empty());
+  nlohmann::json e = entry();
+  e["frame"] = "frame_0000.tframe";
+  e["frame_sha256"] = sha256Hex(bytes);
+  const ExpectationSet set = parseExpectations(doc(e), "x.json");
+  const CommandList a = readFrame(f1), b = readFrame(f2);
+  EXPECT_EQ(set.matching(llvmpipe(2), "r/frame_0000.tframe", &a).size(), 1u);
+  EXPECT_TRUE(set.matching(llvmpipe(2), "r/frame_0000.tframe", &b).empty()) << "same name, other frame";
+  EXPECT_TRUE(set.matching(llvmpipe(2), "r/frame_0000.tframe").empty()) << "no list to hash";
+  EXPECT_TRUE(set.matching(llvmpipe(2), "r/frame_0002.tframe", &a).empty()) << "same frame, other name";
+  for (const char* bad : {"ABC", "1AA3D9E977364D01BC6CB7A6397EC131199A731C09B7EC96BC540CEC56D6D1C3"}) {
+    e["frame_sha256"] = bad;
+    EXPECT_NE(errorOf(doc(e)).find("field 'frame_sha256' must be 64 lowercase hex digits"), std::string::npos) << bad;
+  }
 }
 
 TEST(Expectations, EntriesMatchOnlyTheirImplementationVersionConditionAndFrame) {
