@@ -185,7 +185,11 @@ TexelFrame analyzeTexels(const TreeRenderer& renderer, const Camera& camera, con
         out.source[pix] = 1;
         ++out.pixelsAtlas;
         if (base > out.maxAtlasRatioBase) out.maxAtlasRatioBase = base;
-        if (axisBase > out.maxAtlasAxisBase) out.maxAtlasAxisBase = axisBase;
+        const double origBaseIso = 1.0 / jOrig.rho(), origAxis = jOrig.perAxisPixels();
+        if (!(jOrig.rho() > 0.0) || !(origAxis <= origBaseIso * kDegenerateAnisotropy))
+          ++out.atlasPixelsDegenerateTexcoords;
+        else if (axisBase > out.maxAtlasAxisBase)
+          out.maxAtlasAxisBase = axisBase;
         // A violation: the atlas magnifies beyond τ where the original texture would have been finer (the
         // build never stores more texels than the original has).
         if (base > tauLimit) {
@@ -268,6 +272,7 @@ nlohmann::json toJson(const TexelFrame& t) {
           {"per_axis_magnification_violations", t.perAxisViolations},
           {"atlas_pixels_above_tau_per_axis", t.atlasAxisAboveTau},
           {"max_atlas_per_axis_level0", t.maxAtlasAxisBase},
+          {"atlas_pixels_degenerate_texcoords", t.atlasPixelsDegenerateTexcoords},
           {"histogram", hist},
           {"per_axis_histogram", axisHist}};
 }

@@ -427,6 +427,37 @@ TEST(TexelAnalysis, AStretchedTextureSpansFourTimesMorePixelsAlongOneEdgeThanRho
   EXPECT_EQ(t.perAxisViolations, 0u) << "original textures never count as violations";
 }
 
+// Quad 5 of the grid gets collinear texcoords (every v the same): its texels are lines, infinitely long on
+// screen across them. Its atlas pixels are counted apart and stay out of the per-axis maximum, which then
+// stays what the other quads give.
+TEST(TexelAnalysis, AtlasPixelsOfCollinearTexcoordsAreCountedApartFromThePerAxisMaximum) {
+  Scene scene = gridScene(4, 4, 32, 1.0f);
+  for (int k = 5 * 6; k < 6 * 6; ++k) scene.geometry.layers[0].uv[size_t(k)].y = 0.25f;
+  TempFile file{"collinear.mta"};
+  BuildParams p;
+  p.atlasSize = 64;
+  p.border = 2;
+  p.dMin = 1.5;
+  p.screenWidth = 256;
+  p.threads = 2;
+  buildMta(scene, p, file.path);
+  const PagingFile f(file.path);
+  TreeRenderer r(f, everythingResident());
+  Camera c;
+  c.eye = {2.0, 2.0, 16.0};  // far enough that the quads are drawn with atlases
+  c.target = {2.0, 2.0, 0.0};
+  c.tanHalfFovX = 0.5;
+  c.nearPlane = 0.05;
+  c.farPlane = 100.0;
+  const FrameResult fr = r.renderFrame(c);
+  ASSERT_GT(fr.plan.atlasNodes, 0u);
+  const TexelFrame t = analyzeTexels(r, c, fr, r.triangleIds(c, fr.plan), f.meta().params.tau);
+  EXPECT_GT(t.atlasPixelsDegenerateTexcoords, 20u) << t.pixelsAtlas << " atlas pixels, " << t.pixelsOriginal << " original";
+  EXPECT_LT(t.atlasPixelsDegenerateTexcoords, t.pixelsAtlas / 8) << "one quad of 16";
+  EXPECT_GT(t.maxAtlasAxisBase, 0.0);
+  EXPECT_LT(t.maxAtlasAxisBase, 16.0 * t.maxAtlasRatioBase) << "the other quads' texels are square";
+}
+
 TEST(TexelAnalysis, RatioBinsAreThePowersOfTheSquareRootOfTwo) {
   EXPECT_EQ(ratioBinLower(0), 0.0);
   EXPECT_EQ(ratioBinLower(1), 0.25);

@@ -112,7 +112,7 @@ nlohmann::json runTexel(const PathRunArgs& a) {
   nlohmann::json rows = nlohmann::json::array();
   std::array<uint64_t, mta::kRatioBins> hist{};
   uint64_t violations = 0, violationsAllResident = 0, framesAllResident = 0, atlasPixels = 0, abovePixels = 0;
-  uint64_t framesCapped = 0;
+  uint64_t framesCapped = 0, degenerate = 0;
   uint64_t axisViolations = 0, axisViolationsAllResident = 0, axisAbovePixels = 0, atlasNodes = 0, leaves = 0, binds = 0;
   double maxRatio = 0.0, maxAxis = 0.0;
   Progress progress("texel", path.frames.size(), a.quiet);
@@ -134,6 +134,7 @@ nlohmann::json runTexel(const PathRunArgs& a) {
     axisViolations += t.perAxisViolations;
     axisAbovePixels += t.atlasAxisAboveTau;
     maxAxis = std::max(maxAxis, t.maxAtlasAxisBase);
+    degenerate += t.atlasPixelsDegenerateTexcoords;
     atlasNodes += r.plan.atlasNodes;
     leaves += r.plan.originalLeaves;
     binds += r.counters.texture_binds;
@@ -168,6 +169,7 @@ nlohmann::json runTexel(const PathRunArgs& a) {
                             {"per_axis_magnification_violations_when_every_needed_block_resident", axisViolationsAllResident},
                             {"atlas_pixels_above_tau_per_axis_capped_by_original", axisAbovePixels - axisViolations},
                             {"max_atlas_per_axis_level0", maxAxis},
+                            {"atlas_pixels_degenerate_texcoords", degenerate},
                             {"atlas_nodes_drawn", atlasNodes},
                             {"original_leaves_drawn", leaves},
                             {"texture_binds", binds},
