@@ -8,9 +8,22 @@
 #include <initializer_list>
 #include <string>
 
+#include "mta/build.h"
 #include "mta/scene.h"
 
 namespace tessera::mta::testing {
+
+// The run-time tests' small trees: 64 x 64 atlases with 2-texel borders, sized for a 256-pixel screen and
+// built on 2 threads, so that a dozen unit quads make a tree several levels deep.
+inline BuildParams smallTreeParams(double dMin = 1.5) {
+  BuildParams p;
+  p.atlasSize = 64;
+  p.border = 2;
+  p.dMin = dMin;
+  p.screenWidth = 256;
+  p.threads = 2;
+  return p;
+}
 
 // Appends the square [x0, x0 + size] x [y0, y0 + size] at height z to `g` as two opaque triangles
 // (corners 0,1,2 and 0,2,3, counter-clockwise seen from +z), each its own source triangle. Layer l gets

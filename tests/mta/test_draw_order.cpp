@@ -23,6 +23,7 @@ namespace tessera::mta {
 namespace {
 
 using testing::addSquare;
+using testing::smallTreeParams;
 using testing::TempFile;
 
 // A wall of 12 x 12 unit quads at z = 0 whose textures repeat every three quads, so that many leaves
@@ -68,12 +69,7 @@ struct SharedTree {
   RuntimeGeometry geometry;
   BlockIndex index;
   explicit SharedTree(bool decals) : file(decals ? "decals.mta" : "shared.mta") {
-    BuildParams p;
-    p.atlasSize = 64;
-    p.border = 2;
-    p.dMin = 1.5;
-    p.screenWidth = 256;
-    p.threads = 2;
+    BuildParams p = smallTreeParams();
     buildMta(sharedTextureScene(decals), p, file.path);
     tree = std::make_unique<PagingFile>(file.path);
     geometry = buildRuntimeGeometry(tree->meta());

@@ -16,6 +16,7 @@ namespace tessera::mta {
 namespace {
 
 using testing::gridScene;
+using testing::smallTreeParams;
 using testing::TempFile;
 
 using testing::fixture;
@@ -141,12 +142,7 @@ TEST(PagingPolicy, NoBlockOfALayerThatNothingDrawsIsEverRequestedOrLoaded) {
   // TreeRenderer drives them, with drawn layers {0}: the recorder itself draws both since layer 1 is
   // drawn, test_layer_drawing.cpp).
   TempFile file("layers.mta");
-  BuildParams p;
-  p.atlasSize = 64;
-  p.border = 2;
-  p.dMin = 1.5;
-  p.screenWidth = 256;
-  p.threads = 2;
+  BuildParams p = smallTreeParams();
   buildMta(gridScene(8, 8, 32, 2.0f, true), p, file.path);
   const PagingFile f(file.path);
   const MtaMeta& m = f.meta();
@@ -203,13 +199,8 @@ TEST(PagingPolicy, AViewThatNeedsOneFacadeImageLoadsOnlyThatImagesBytes) {
   // Four facades side by side whose 32 x 32 images (3072 bytes each) cannot share a 64² atlas with their
   // borders, so no leaf holds two facades; several of the images would fit one 4 · 64² byte block.
   TempFile file("facades.mta");
-  BuildParams p;
+  BuildParams p = smallTreeParams(1.0);
   p.encoding = BlockEncoding::Raw;  // the bytes of one image are its texels (S3TC: test_s3tc_blocks.cpp)
-  p.atlasSize = 64;
-  p.border = 2;
-  p.dMin = 1.0;
-  p.screenWidth = 256;
-  p.threads = 2;
   buildMta(gridScene(4, 1, 32, 1.0f), p, file.path);
   const PagingFile f(file.path);
   const MtaMeta& m = f.meta();

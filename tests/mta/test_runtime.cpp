@@ -19,6 +19,7 @@ namespace tessera::mta {
 namespace {
 
 using testing::gridScene;
+using testing::smallTreeParams;
 using testing::TempFile;
 
 using testing::fixture;
@@ -396,12 +397,7 @@ TEST(TexelAnalysis, AStretchedTextureSpansFourTimesMorePixelsAlongOneEdgeThanRho
   Scene scene = gridScene(4, 4, 32, 1.0f);
   for (glm::vec2& uv : scene.geometry.layers[0].uv) uv.x *= 4.0f;
   TempFile file{"stretched.mta"};
-  BuildParams p;
-  p.atlasSize = 64;
-  p.border = 2;
-  p.dMin = 1.5;
-  p.screenWidth = 256;
-  p.threads = 2;
+  BuildParams p = smallTreeParams();
   buildMta(scene, p, file.path);
   const PagingFile f(file.path);
   RendererOptions o = everythingResident();
@@ -434,12 +430,7 @@ TEST(TexelAnalysis, AtlasPixelsOfCollinearTexcoordsAreCountedApartFromThePerAxis
   Scene scene = gridScene(4, 4, 32, 1.0f);
   for (int k = 5 * 6; k < 6 * 6; ++k) scene.geometry.layers[0].uv[size_t(k)].y = 0.25f;
   TempFile file{"collinear.mta"};
-  BuildParams p;
-  p.atlasSize = 64;
-  p.border = 2;
-  p.dMin = 1.5;
-  p.screenWidth = 256;
-  p.threads = 2;
+  BuildParams p = smallTreeParams();
   buildMta(scene, p, file.path);
   const PagingFile f(file.path);
   TreeRenderer r(f, everythingResident());

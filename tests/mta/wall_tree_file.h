@@ -15,13 +15,8 @@ struct WallTreeFile {
   TempFile file;
   std::unique_ptr<PagingFile> tree;
   explicit WallTreeFile(BlockEncoding encoding = BlockEncoding::S3tc) : file(encoding == BlockEncoding::Raw ? "wall_raw.mta" : "wall.mta") {
-    BuildParams p;
+    BuildParams p = smallTreeParams();
     p.encoding = encoding;
-    p.atlasSize = 64;
-    p.border = 2;
-    p.dMin = 1.5;
-    p.screenWidth = 256;
-    p.threads = 2;
     buildMta(gridScene(12, 12, 32, 2.0f), p, file.path);
     tree = std::make_unique<PagingFile>(file.path);
   }
