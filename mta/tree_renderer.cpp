@@ -27,7 +27,7 @@ TreeRenderer::TreeRenderer(const PagingFile& file, RendererOptions options)
   options_.residency.drawnLayers = kRecordedLayers;
   if (options_.mode == RenderMode::AtlasTree) residency_ = std::make_unique<Residency>(file_, options_.residency);
   textures_ = std::make_unique<TextureCache>(file_, residency_.get());
-  backend_ = std::make_unique<CpuBackend>(RenderOptions{options_.threads, false});
+  backend_ = std::make_unique<CpuBackend>(RenderOptions{options_.threads, false, options_.limits});
 }
 
 TreeRenderer::~TreeRenderer() = default;
@@ -80,7 +80,8 @@ FrameResult TreeRenderer::renderFrame(const Camera& camera) {
   r.recordMs = msSince(t0);
 
   t0 = std::chrono::steady_clock::now();
-  backend_->execute(rec.list, "atlas tree frame " + std::to_string(r.frame));
+  // The label errors carry: which run and frame (`mta runs` renders three).
+  backend_->execute(rec.list, std::string(renderModeName(options_.mode)) + " run, frame " + std::to_string(r.frame));
   r.renderMs = msSince(t0);
   r.image = presentedLevel0();
   return r;

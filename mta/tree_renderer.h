@@ -40,6 +40,9 @@ struct RendererOptions {
   // with their resident atlases; 0 = no cap (the thesis). Needs groupBinds, which it counts on.
   uint32_t maxBinds = 0;
   int threads = 0;                // oracle threads; the bytes never depend on it
+  // The oracle's per-frame memory check (limits.frameBytes, `--memory-budget`): a frame of run 1 uploads
+  // every visible leaf's original textures decoded, which on berlin 10,000 is 6.1 GiB.
+  ResourceLimits limits;
 };
 
 struct FrameResult {

@@ -466,6 +466,11 @@ PY
       [ "$(json_field runs.json "['$m']['draw_calls_max']")" != "" ] || fail "runs lacks $m"
     done
     [ -s runs/runs.png ] || fail "runs did not write runs.png"
+    # Run 1 uploads every visible original: over --memory-budget it stops, naming the run, frame and option.
+    if "$tessera" mta runs tree.mta --frames 2 --size 128x96 --save-every 0 --memory-budget 64KiB -o runs2 --quiet \
+        > /dev/null 2> budget.err; then fail "a run over --memory-budget 64KiB passed"; fi
+    grep -q "original run, frame 0" budget.err && grep -q -- "--memory-budget" budget.err \
+      || fail "the budget error does not name the run and the option: $(cat budget.err)"
     ;;
   bad_camera_path_is_a_clear_error)
     "$tessera" city --preset berlin --buildings 4 -o city --quiet > /dev/null

@@ -340,6 +340,26 @@ TEST(TreeRenderer, DeterministicBudgetsGiveTheSameFramesForAnyThreadCount) {
   EXPECT_EQ(std::set<std::string>(one.begin(), one.end()).size() > 10, true) << "the path should change the image";
 }
 
+// Run 1 uploads every visible leaf's originals, which a big city makes several GiB: the frame budget is
+// the renderer's option, and the error names the run and the frame.
+TEST(TreeRenderer, TheFrameMemoryBudgetIsAnOptionAndItsErrorNamesTheRunAndFrame) {
+  RendererOptions o = everythingResident();
+  o.mode = RenderMode::Original;
+  o.limits.frameBytes = 64 * 1024;
+  TreeRenderer r(*fixture().tree, o);
+  try {
+    r.renderFrame(path()[23]);
+    FAIL() << "a frame over 64 KiB was drawn";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("original run, frame 0"), std::string::npos) << m;
+    EXPECT_NE(m.find("--memory-budget"), std::string::npos) << m;
+  }
+  o.limits.frameBytes = uint64_t(1) << 32;
+  TreeRenderer roomy(*fixture().tree, o);
+  EXPECT_GT(roomy.renderFrame(path()[23]).plan.originalLeaves, 0u);
+}
+
 TEST(TexelAnalysis, NoAtlasPixelMagnifiesBeyondTauWhenEveryNeededBlockIsResident) {
   const PagingFile& f = *fixture().tree;
   const RendererOptions o = everythingResident();

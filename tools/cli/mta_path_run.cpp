@@ -57,6 +57,7 @@ void addPathRunOptions(CLI::App* cmd, PathRunArgs& a, bool withMemory) {
                   "docs/mta-render.md")
       ->check(CLI::Range(0u, 1000000u))
       ->capture_default_str();
+  addMemoryBudgetOption(cmd, a.limits);
   addThreadsOption(cmd, a.threads, "Oracle threads; images never depend on it");
   cmd->add_option("--save-every", a.saveEvery, "Write every N-th frame as PNG (0 = none); the last frame is always written")
       ->capture_default_str();
@@ -97,6 +98,7 @@ mta::RendererOptions rendererOptions(const PathRunArgs& a, mta::RenderMode mode)
     throw Error("--max-binds counts the binds of draws grouped by texture: it cannot be combined with --no-group-binds");
   o.maxBinds = a.maxBinds;
   o.threads = a.threads;
+  o.limits.frameBytes = a.limits.frameBytes;
   if (!kCapacityMiB.contains(a.capacityMiB))
     throw Error("--capacity must be a number of MiB " + kCapacityMiB.describe());
   o.residency.capacityBytes = uint64_t(a.capacityMiB * 1048576.0);

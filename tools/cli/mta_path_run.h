@@ -35,7 +35,7 @@ struct PathRunArgs {
   bool recordFrames = false;  // mta render: a .tframe next to every saved frame image (--record)
   bool quiet = false;
   double buildDMin = 0.0;     // texel with a model: d_min of the build (0 = D / 72)
-  ResourceLimits limits;      // texel with a model: the model budgets (--model-budget-*)
+  ResourceLimits limits;      // --memory-budget (frameBytes); texel with a model: the model budgets (--model-budget-*)
 };
 
 // Registers the options above on a subcommand.

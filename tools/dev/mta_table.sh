@@ -9,28 +9,30 @@
 #   violations                    texel --budget unlimited (isotropic and per axis, every block resident)
 #   PSNR                          mta runs (the atlas tree's frames against original textures)
 # Prints OUT/row.json and one Markdown table row. FRAMES (default 300), SIZE (default 1024x768) and
-# TEXEL_FRAMES (default 60) come from the environment. REUSE=1 skips the build when OUT/tree.mta and
-# OUT/build.json (the build's printed JSON) are already there, e.g. a build too long to repeat. A failing
-# command stops the script (set -e) with its own message; its outputs stay in OUT for a look.
+# TEXEL_FRAMES (default 60) come from the environment, and MEMORY_BUDGET (default 4GiB), the oracle's
+# --memory-budget: run 1 of `mta runs` uploads every visible original (6.1 GiB a frame on berlin 10,000).
+# REUSE=1 skips each step whose output is already in OUT (tree.mta with build.json, the build's printed
+# JSON; render/frames.json; texel/texel.json), e.g. a build too long to repeat. A failing command stops
+# the script (set -e) with its own message; its outputs stay in OUT for a look.
 #
 #   tools/dev/mta_table.sh build/tessera data/railway.glb /tmp/t/railway --d-min 5
 #   tools/dev/mta_table.sh build/tessera data/railway.glb /tmp/t/railway-raw --d-min 5 --raw
 set -euo pipefail
-usage() { sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; }
+usage() { sed -n '2,19p' "$0" | sed 's/^# \{0,1\}//'; }
 if [ "${1:-}" = "-h" ] || [ "${1:-}" = "--help" ]; then usage; exit 0; fi
 if [ $# -lt 3 ]; then usage >&2; echo "mta_table: expected at least 3 arguments, got $#" >&2; exit 2; fi
 T=$(realpath "$1") MODEL=$2 OUT=$3
 shift 3
-FRAMES=${FRAMES:-300} SIZE=${SIZE:-1024x768} TEXEL_FRAMES=${TEXEL_FRAMES:-60}
+FRAMES=${FRAMES:-300} SIZE=${SIZE:-1024x768} TEXEL_FRAMES=${TEXEL_FRAMES:-60} MEMORY_BUDGET=${MEMORY_BUDGET:-4GiB}
+have() { [ "${REUSE:-0}" = 1 ] && [ -s "$OUT/$1" ] && echo "mta_table: reusing $OUT/$1" >&2; }
 mkdir -p "$OUT"
-if [ "${REUSE:-0}" = 1 ] && [ -s "$OUT/tree.mta" ] && [ -s "$OUT/build.json" ]; then
-  echo "mta_table: reusing $OUT/tree.mta" >&2
-else
-  "$T" mta build "$MODEL" -o "$OUT/tree.mta" --quiet "$@" > "$OUT/build.json"
-fi
-"$T" mta render "$OUT/tree.mta" --frames "$FRAMES" --size "$SIZE" --save-every 0 -o "$OUT/render" --quiet > /dev/null
-"$T" texel "$OUT/tree.mta" --budget unlimited --frames "$TEXEL_FRAMES" --size "$SIZE" -o "$OUT/texel" --quiet > /dev/null
-"$T" mta runs "$OUT/tree.mta" --frames "$TEXEL_FRAMES" --size "$SIZE" --save-every 0 -o "$OUT/runs" --quiet > "$OUT/runs.json"
+have tree.mta && have build.json || "$T" mta build "$MODEL" -o "$OUT/tree.mta" --quiet "$@" > "$OUT/build.json"
+have render/frames.json || "$T" mta render "$OUT/tree.mta" --frames "$FRAMES" --size "$SIZE" --save-every 0 \
+  --memory-budget "$MEMORY_BUDGET" -o "$OUT/render" --quiet > /dev/null
+have texel/texel.json || "$T" texel "$OUT/tree.mta" --budget unlimited --frames "$TEXEL_FRAMES" --size "$SIZE" \
+  --memory-budget "$MEMORY_BUDGET" -o "$OUT/texel" --quiet > /dev/null
+"$T" mta runs "$OUT/tree.mta" --frames "$TEXEL_FRAMES" --size "$SIZE" --save-every 0 --memory-budget "$MEMORY_BUDGET" \
+  -o "$OUT/runs" --quiet > "$OUT/runs.json"
 python3 - "$OUT" "$MODEL" "$*" <<'EOF'
 import json, sys, os
 out, model, options = sys.argv[1:4]
