@@ -171,8 +171,9 @@ void expectSameScene(const TabScene& a, const TabScene& b) {
   }
   ASSERT_EQ(a.vertices.size(), b.vertices.size());
   // memcmp's pointers must not be null even for 0 bytes (an empty vector's data() may be).
-  if (!a.vertices.empty())
+  if (!a.vertices.empty()) {
     EXPECT_EQ(0, std::memcmp(a.vertices.data(), b.vertices.data(), a.vertices.size() * sizeof(Vertex)));
+  }
 }
 
 // The section table as docs/tab-format.md lays it out: entry k at 32 + 56 k: kind, reserved, offset, size.

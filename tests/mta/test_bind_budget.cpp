@@ -94,7 +94,7 @@ TEST(BindBudget, ACapIsMetByDrawingRefinedNodesWithTheirAtlasesAndTheSameTriangl
       const FramePlan capped = p.plan(v, cap);
       SCOPED_TRACE("keys " + std::to_string(keys) + ", cap " + std::to_string(cap));
       // Met, unless nothing is left to coarsen: then every node drawn is an atlas (the root's, at worst).
-      if (textureKeyCount(capped) > cap) EXPECT_TRUE(capped.refined.empty());
+      if (textureKeyCount(capped) > cap) { EXPECT_TRUE(capped.refined.empty()); }
       EXPECT_GT(capped.coarsenedForBinds, 0u);
       EXPECT_LT(capped.worstBindRatio, 1.0);
       EXPECT_GE(capped.worstBindRatio, 0.0);  // 0: the eye inside the node's box
@@ -159,13 +159,13 @@ TEST(BindBudget, ACappedFrameBindsAtMostTheCapAndItsViolationsAreCounted) {
     // Binds follow the keys; the keys meet the cap unless nothing was left to coarsen.
     EXPECT_LE(b.counters.texture_binds, textureKeyCount(b.plan)) << "frame " << b.frame;
     EXPECT_LE(b.counters.units[1].texture_binds, textureKeyCount(b.plan)) << "frame " << b.frame;
-    if (!b.plan.refined.empty()) EXPECT_LE(textureKeyCount(b.plan), 3u) << "frame " << b.frame;
+    if (!b.plan.refined.empty()) { EXPECT_LE(textureKeyCount(b.plan), 3u) << "frame " << b.frame; }
     cappedBinds = std::max<uint64_t>(cappedBinds, b.counters.texture_binds);
     freeBinds = std::max<uint64_t>(freeBinds, a.counters.texture_binds);
     const TexelFrame ta = analyzeTexels(free, v.camera, a, free.triangleIds(v.camera, a.plan), f.meta().params.tau);
     const TexelFrame tb = analyzeTexels(cap, v.camera, b, cap.triangleIds(v.camera, b.plan), f.meta().params.tau);
     EXPECT_EQ(ta.magnificationViolations, 0u);
-    if (b.plan.coarsenedForBinds == 0) EXPECT_EQ(tb.magnificationViolations, 0u);
+    if (b.plan.coarsenedForBinds == 0) { EXPECT_EQ(tb.magnificationViolations, 0u); }
     coarsened += b.plan.coarsenedForBinds;
     violations += tb.magnificationViolations;
     const nlohmann::json j = toJson(b, RenderMode::AtlasTree);

@@ -113,7 +113,7 @@ TEST(Residency, DecodedBytesResidentHoldEveryChainTheFrameUploadsAndOnlyThoseOnT
     const uint64_t uploaded = fr.counters.texture_bytes_uploaded;
     ASSERT_GT(uploaded, 4u) << "frame " << fr.frame;
     EXPECT_GE(fr.decodedBytesResident + 4, uploaded) << "frame " << fr.frame;
-    if (first) EXPECT_LE(fr.decodedBytesResident, uploaded) << "frame " << fr.frame;
+    if (first) { EXPECT_LE(fr.decodedBytesResident, uploaded) << "frame " << fr.frame; }
     first = false;
   }
 }

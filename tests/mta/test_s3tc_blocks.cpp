@@ -80,7 +80,7 @@ TEST(S3tcBlocks, AtlasAndImageBlocksHoldWholeMipChainsOfBc1ForRgbAndBc3ForRgba) 
   EXPECT_GT(atlases, 0u);
   EXPECT_GT(images, 0u);
   for (const ImageRecord& r : m.images)
-    if (r.pieceCount) EXPECT_EQ(r.pieceCount, 1u) << r.name;
+    if (r.pieceCount) { EXPECT_EQ(r.pieceCount, 1u) << r.name; }
 }
 
 TEST(S3tcBlocks, TheFileHasTheSameBytesAtOneTwoAndSevenThreads) {
@@ -115,7 +115,7 @@ TEST(S3tcBlocks, AnAtlasDecodesToLevelZeroWithinTheEncodersErrorAndWhiteStaysWhi
   // of the texels' own spread (about 85 for uniform noise) on average.
   EXPECT_LT(double(sum) / double(ra.size()), 32.0) << "worst " << worst;
   const std::vector<uint8_t> white = std::vector<uint8_t>(ra.size(), 255);
-  if (a.readAtlas(0, 0, 1) == white) EXPECT_EQ(b.readAtlas(0, 0, 1), white);
+  if (a.readAtlas(0, 0, 1) == white) { EXPECT_EQ(b.readAtlas(0, 0, 1), white); }
 }
 
 }  // namespace
