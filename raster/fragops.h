@@ -12,6 +12,7 @@
 
 #include <cstdint>
 
+#include "raster/round.h"
 #include "raster/setup.h"
 #include "raster/types.h"
 
@@ -28,7 +29,7 @@ inline float clampFragDepth(float z) { return z > 0.0f ? (z < 1.0f ? z : 1.0f) :
 inline uint8_t toUnorm8(double c) {
   if (!(c > 0.0)) return 0;  // also NaN
   if (c >= 1.0) return 255;
-  return uint8_t(roundHalfEven(c * 255.0));
+  return uint8_t(roundHalfEvenNear(c * 255.0));  // 0 < c * 255 < 255: roundHalfEven's value
 }
 
 // Blends `src` (the program's output) with `dst` under `b`; `unorm` selects the fixed-point rules.

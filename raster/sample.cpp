@@ -20,6 +20,7 @@
 
 #include "raster/lod_probe.h"
 #include "raster/provenance.h"
+#include "raster/round.h"
 #include "raster/sample_detail.h"
 #include "raster/stage_times.h"
 
@@ -38,10 +39,13 @@ namespace {
 
 constexpr uint32_t kWeightOne = 1u << kSubtexelBits;        // 256: one 8-bit weight
 constexpr double kTotalWeight = 16777216.0;                 // 2^24 = 256^3
-constexpr double kUnormDenominator = 255.0 * kTotalWeight;  // exact in double
+static_assert(kUnormDenominator == 255.0 * kTotalWeight);   // raster/round.h
 // Texel-space coordinates are clamped to +-2^52 before conversion to int64 (2^52 * 256 < 2^63).
 // Floats of that magnitude are multiples of 2^29, far beyond any meaningful coordinate.
 constexpr float kCoordLimit = 4503599627370496.0f;  // 2^52
+// Below this magnitude a coordinate needs neither the NaN test nor the clamps, and 256 u rounds with
+// roundHalfEvenNear (|256 u| <= 2^48): one compare per tap instead of the guards (NaN fails it).
+constexpr float kCoordFast = 1099511627776.0f;  // 2^40
 
 // GL 4.6 §8.17 texture completeness, and §11.1.3.5: sampling an incomplete texture returns
 // (0, 0, 0, 1). An integer-format texture is incomplete unless the mag filter is NEAREST and the
@@ -229,6 +233,7 @@ inline Acc<F> channel(const uint8_t* texel, int c) {
 // NEAREST texel index (GL 4.6 §8.14.2: i = floor(u)). NaN coordinates are treated as 0 (GL leaves
 // them undefined); the clamp keeps the int64 conversion defined.
 inline int64_t nearestIndex(float u) {
+  if (std::fabs(u) <= kCoordFast) return floorToInt(double(u));
   if (std::isnan(u)) return 0;
   if (u < -kCoordLimit) u = -kCoordLimit;
   if (u > kCoordLimit) u = kCoordLimit;
@@ -241,6 +246,7 @@ inline int64_t nearestIndex(float u) {
 // alpha8 = U & 255. This equals the rule above; when alpha rounds up to 256 the carry moves to i0,
 // which gives the same filtered value (the full weight lands on the same texel).
 inline int64_t linearFixed(float u) {
+  if (std::fabs(u) <= kCoordFast) return roundHalfEvenNear(double(u) * 256.0) - 128;  // same value
   if (std::isnan(u)) u = 0.0f;
   if (u < -kCoordLimit) u = -kCoordLimit;
   if (u > kCoordLimit) u = kCoordLimit;
@@ -381,7 +387,9 @@ inline void samplePlanned(const Plan& p, float s, float t, uint32_t layer, float
   if (p.levelCount == 2) accumulateLevel<F, kBorder, kLog>(p, p.lv[1], s, t, layer, p.levelWeight[1], acc, log);
   for (int c = 0; c < C; ++c) {
     if constexpr (Fmt<F>::kUnorm) {
-      out[c] = float(double(acc[c]) / kUnormDenominator);  // the one conversion to float
+      // The one conversion to float: acc / (255 * 2^24), as a multiply that gives the division's
+      // float (raster/round.h says why).
+      out[c] = float(double(acc[c]) * kUnormReciprocal);
     } else {
       out[c] = float(acc[c] * (1.0 / kTotalWeight));  // exact scaling, then one rounding
     }
