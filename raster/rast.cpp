@@ -7,6 +7,7 @@
 
 #include "raster/fragops.h"
 #include "raster/provenance.h"
+#include "raster/sample.h"
 #include "raster/tolerances.h"
 
 namespace tessera::detail {
@@ -98,6 +99,7 @@ class TriangleRasterizer {
   TriangleRasterizer(const Scene& scene, const TriSetup& t, RastScratch& s, PipelineStats& stats)
       : scene_(scene), t_(t), ds_(*scene.states[t.drawState]), s_(s), stats_(stats),
         lateDepth_(ds_.program->writesDepth()) {
+    beginPlanCache();  // a new triangle: no lambda or plan of another one is reused (sample.h)
     const TargetView& tv = scene.target;
     depth_ = Plane::of(tv.depth, tv.level, t.layer);
     // Only the attachments the program writes are ever addressed (flush() loops to colorOutputs).
@@ -331,6 +333,7 @@ void rasterizeTile(const Scene& scene, size_t tileIndex, RastScratch& scratch, P
         break;
     }
   }
+  endPlanCache();
   if (scene.lod) setLodQuadLog(nullptr);  // vertex stages on this thread must not append to it
   if (scene.timeStages) {
     setSampleTicks(nullptr);

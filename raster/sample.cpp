@@ -521,6 +521,37 @@ void probeLookup(LodQuadLog& log, const TexUnit& u, double dudx, double dvdx, do
   e.look.grad = grad ? 1 : 0;
 }
 
+// The last plan of the calling thread's implicit-LOD lookups, reused while the next quad of the same
+// triangle has the same rho^2 and bias on the same unit: a lookup's lambda and plan are functions of
+// exactly (unit, rho^2, shader bias), and within one triangle of one tile nothing a plan reads can
+// change (the draw state, its units and their textures are fixed while a tile runs). Affine texture
+// coordinates give every quad of a triangle the same rho^2, so a fill-bound frame computes one lambda
+// and one plan per triangle and tile instead of per quad. The rasterizer opens the cache per triangle
+// (beginPlanCache: a new epoch) and closes it after each tile; other callers of the sampler (tests,
+// tools) never see it. Provenance mode, whose plans depend on the bound being shaded, never opens it.
+struct PlanCache {
+  bool open = false;
+  uint64_t epoch = 0, validEpoch = 0;  // the entry is valid iff validEpoch == epoch
+  const TexUnit* unit = nullptr;
+  uint64_t rho2Bits = 0;
+  uint32_t biasBits = 0;
+  int32_t lambda8 = 0;
+  Plan plan;
+};
+constinit thread_local PlanCache t_planCache;
+
+inline uint64_t bitsOf(double v) {
+  uint64_t b;
+  std::memcpy(&b, &v, sizeof b);
+  return b;
+}
+
+inline uint32_t bitsOf(float v) {
+  uint32_t b;
+  std::memcpy(&b, &v, sizeof b);
+  return b;
+}
+
 // Implicit-LOD quad lookup shared by the 2D and 2D-array forms (layers: per pixel, already selected).
 void sampleQuadImpl(const TexUnit& u, const float s[4], const float t[4], const uint32_t layers[4], float bias,
                     float out[4][4]) {
@@ -537,6 +568,24 @@ void sampleQuadImpl(const TexUnit& u, const float s[4], const float t[4], const 
   const double dvdx = (double(t[1]) - double(t[0])) * H;
   const double dudy = (double(s[2]) - double(s[0])) * W;
   const double dvdy = (double(t[2]) - double(t[0])) * H;
+  PlanCache& cache = t_planCache;
+  if (cache.open && std::isfinite(dudx) && std::isfinite(dvdx) && std::isfinite(dudy) && std::isfinite(dvdy)) {
+    // rho^2 exactly as computeLambda forms it (same operands, same order).
+    const double rx = dudx * dudx + dvdx * dvdx;
+    const double ry = dudy * dudy + dvdy * dvdy;
+    const uint64_t rho2Bits = bitsOf(rx > ry ? rx : ry);
+    const uint32_t biasBits = bitsOf(bias);
+    if (cache.validEpoch != cache.epoch || cache.unit != &u || cache.rho2Bits != rho2Bits ||
+        cache.biasBits != biasBits) {
+      cache.lambda8 = computeLambda(dudx, dvdx, dudy, dvdy, u.sampler, bias);
+      cache.plan = makePlan(u, cache.lambda8);
+      cache.unit = &u, cache.rho2Bits = rho2Bits, cache.biasBits = biasBits, cache.validEpoch = cache.epoch;
+    }
+    if (LodQuadLog* log = t_lodLog)
+      probeLookup(*log, u, dudx, dvdx, dudy, dvdy, cache.lambda8, cache.plan.levelCount, false);
+    sampleN(u, cache.plan, 4, s, t, layers, out);
+    return;
+  }
   const int32_t lambda8 = computeLambda(dudx, dvdx, dudy, dvdy, u.sampler, bias);
   const Plan p = makePlan(u, lambda8);
   if (LodQuadLog* log = t_lodLog) probeLookup(*log, u, dudx, dvdx, dudy, dvdy, lambda8, p.levelCount, false);
@@ -569,6 +618,11 @@ class SampleTimer {
 }  // namespace
 
 void setLodQuadLog(LodQuadLog* log) { t_lodLog = log; }
+void detail::beginPlanCache() {
+  t_planCache.open = true;
+  ++t_planCache.epoch;
+}
+void detail::endPlanCache() { t_planCache.open = false; }
 void detail::setSampleTicks(uint64_t* ticks) { t_sampleTicks = ticks; }
 
 void sampleAtLambda(const TexUnit& u, float s, float t, uint32_t layer, int32_t lambda8, float out[4]) {

@@ -84,4 +84,14 @@ uint32_t fetchBufferUint(const TexUnit& u, int64_t index);
 // Wrap of an integer texel coordinate (GL 4.6 Table 8.20). Returns -1 for a border texel.
 int32_t wrapCoord(Wrap w, int64_t i, int32_t size);
 
+namespace detail {
+// The calling thread's plan cache: one lambda and plan reused while rho^2, shader bias and unit repeat
+// from quad to quad. beginPlanCache opens it with a new epoch, so nothing of an earlier triangle is
+// reused; the fast-path rasterizer calls it per triangle of a tile, and endPlanCache after the tile
+// (provenance mode never opens it). Speed only: a lookup gives the same bits with the cache open or
+// closed (tests/raster/test_plan_cache.cpp).
+void beginPlanCache();
+void endPlanCache();
+}  // namespace detail
+
 }  // namespace tessera

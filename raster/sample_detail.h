@@ -86,6 +86,12 @@ int32_t finishLambda(int32_t base, const SamplerQ& s, float shaderBias);
 // sample_lod.cpp: lambda_base (8.8) of rho^2; NaN / Inf give kLodMax, 0 gives kLodMinusInf.
 int32_t lambdaBaseFromRho2(double rho2);
 
+// sample_lod.cpp, for tests: the first `steps` bits of log2(m), m in [1, 2) as Q1.62, from the
+// bit-by-bit loop of log2Fixed, and the 8 bits of lambda from its threshold table (equal by
+// construction).
+int64_t log2BitsLoop(uint64_t m, int steps);
+int64_t log2BitsTable(uint64_t m);
+
 // sample_interval.cpp: a quad lookup in provenance mode. Each pixel's interval over the legal
 // alternatives; out = its lower or upper bound, as shadeProvenance().bound says, and the classes of
 // the freedoms that widened it are ORed into shadeProvenance().classes. r: array layer coordinates

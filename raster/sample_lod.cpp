@@ -44,7 +44,63 @@ inline uint64_t mulQ62(uint64_t a, uint64_t b) {
 #endif
 }
 
+// The first `steps` bits of log2(m) for m in [1, 2) in Q1.62, bit by bit: square m; if m^2 >= 2 the
+// next bit is 1 and m^2 is halved (log2Fixed says what the bits are and why `steps` of them suffice).
+inline int64_t log2Bits(uint64_t m, int steps) {
+  int64_t f = 0;
+  for (int k = 0; k < steps; ++k) {
+    m = mulQ62(m, m);  // Q2.62, < 4
+    f <<= 1;
+    if (m >= (uint64_t(1) << 63)) {
+      f |= 1;
+      m >>= 1;
+    }
+  }
+  return f;
+}
+
+// lambda needs log2Bits(m, 8) per quad lookup: 8 dependent 128-bit products. The same value comes
+// from a table of thresholds: log2Bits(., 8) is monotone in m (every squaring is non-decreasing in
+// m, and where two mantissas first get different bits the larger mantissa gets the 1, which
+// decides the order of the results), so log2Bits(m, 8) = the largest k with kThreshold[k] <= m,
+// where kThreshold[k] is the least mantissa whose loop value is at least k, found once by bisection
+// with the loop itself. Same bits by construction; tests/raster/test_sample.cpp compares the two
+// forms at every threshold, on each side of it, and at random mantissas.
+constexpr int kLambdaSteps = kLodFracBits;  // log2Fixed(rho^2, 7) takes 7 + 1 steps
+struct Log2Thresholds {
+  uint64_t t[1 << kLambdaSteps];
+  Log2Thresholds() {
+    constexpr uint64_t kOne = uint64_t(1) << 62, kTwo = uint64_t(1) << 63;
+    t[0] = kOne;
+    for (int k = 1; k < (1 << kLambdaSteps); ++k) {
+      uint64_t lo = t[k - 1], hi = kTwo - 1;  // log2Bits(hi) = 255 >= k
+      while (lo < hi) {  // the least m in [lo, hi] with log2Bits(m) >= k
+        const uint64_t mid = lo + (hi - lo) / 2;
+        if (log2Bits(mid, kLambdaSteps) >= k) {
+          hi = mid;
+        } else {
+          lo = mid + 1;
+        }
+      }
+      t[k] = lo;
+    }
+  }
+};
+
+inline int64_t log2Bits8(uint64_t m) {
+  static const Log2Thresholds table;
+  int k = 0;
+  for (int step = 1 << (kLambdaSteps - 1); step > 0; step >>= 1)
+    if (table.t[k + step] <= m) k += step;
+  return k;
+}
+
 }  // namespace
+
+namespace sample_detail {
+int64_t log2BitsLoop(uint64_t m, int steps) { return log2Bits(m, steps); }
+int64_t log2BitsTable(uint64_t m) { return log2Bits8(m); }
+}  // namespace sample_detail
 
 SamplerQ SamplerQ::from(const SamplerState& s) {
   SamplerQ q;
@@ -89,15 +145,7 @@ int64_t log2Fixed(double x, int fracBits) {
   // half-way point. The result is floor(2^fracBits * log2(x) + 1/2) = round-half-even of the exact
   // value.
   const int steps = fracBits < kBits ? fracBits + 1 : kBits;
-  int64_t f = 0;
-  for (int k = 0; k < steps; ++k) {
-    m = mulQ62(m, m);  // Q2.62, < 4
-    f <<= 1;
-    if (m >= (uint64_t(1) << 63)) {
-      f |= 1;
-      m >>= 1;
-    }
-  }
+  const int64_t f = log2Bits(m, steps);
   // floor(2^steps * log2 x); beyond 24 bits the result is only shifted (24 bits are computed).
   const int64_t floorValue = int64_t(e) * (int64_t(1) << steps) + f;
   if (fracBits >= kBits) return floorValue * (int64_t(1) << (fracBits - kBits));
@@ -125,7 +173,15 @@ int32_t finishLambda(int32_t base, const SamplerQ& s, float shaderBias) {
 int32_t lambdaBaseFromRho2(double rho2) {
   if (std::isnan(rho2) || std::isinf(rho2)) return kLodMax;  // NaN / Inf: most minified (spec-choices T18)
   if (rho2 == 0.0) return kLodMinusInf;  // GL: lambda = -inf for rho = 0 (also when rho^2 underflows)
-  return int32_t(log2Fixed(rho2, kLodFracBits - 1));  // |value| <= 1075 * 128 < 2^18
+  // log2Fixed(rho2, 7) (|value| <= 1075 * 128 < 2^18), its 8 loop steps from the threshold table
+  // for a normal rho^2; subnormals (rho < 2^-511) take the loop.
+  uint64_t bits;
+  std::memcpy(&bits, &rho2, sizeof bits);
+  const int biased = int(bits >> 52) & 0x7ff;
+  if (biased == 0 || rho2 < 0.0) return int32_t(log2Fixed(rho2, kLodFracBits - 1));
+  const uint64_t m = ((bits & ((uint64_t(1) << 52) - 1)) | (uint64_t(1) << 52)) << 10;  // Q1.62
+  const int64_t floorValue = int64_t(biased - 1023) * (int64_t(1) << kLambdaSteps) + log2Bits8(m);
+  return int32_t((floorValue + 1) >> 1);  // log2Fixed's rounding to 7 bits
 }
 
 }  // namespace sample_detail

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "raster/sample.h"
+#include "raster/sample_detail.h"
 
 namespace tessera {
 namespace {
@@ -549,6 +550,44 @@ TEST(Log2Fixed, RoundsKnownValuesToNearest) {
   EXPECT_EQ(log2Fixed(10.0, 0), 3);        // 3.32
   EXPECT_EQ(log2Fixed(12.0, 0), 4);        // 3.58
   EXPECT_EQ(log2Fixed(1.5, 24), 9814042);  // floor(2^24 log2 1.5) = floor(9814042.23)
+}
+
+TEST(Log2Fixed, TheThresholdTableGivesTheLoopsBitsAtEveryThresholdAndBetween) {
+  using sample_detail::log2BitsLoop;
+  using sample_detail::log2BitsTable;
+  constexpr uint64_t kOne = uint64_t(1) << 62, kTwo = uint64_t(1) << 63;
+  // Every step of the table: the least mantissa with loop value k (found here by the loop, with no
+  // table) and its neighbours on both sides.
+  std::vector<uint64_t> ms = {kOne, kOne + 1, kTwo - 1, kTwo - 2};
+  for (int k = 1; k < 256; ++k) {
+    uint64_t lo = kOne, hi = kTwo - 1;
+    while (lo < hi) {
+      const uint64_t mid = lo + (hi - lo) / 2;
+      if (log2BitsLoop(mid, 8) >= k) {
+        hi = mid;
+      } else {
+        lo = mid + 1;
+      }
+    }
+    for (uint64_t d = 0; d < 4; ++d) ms.insert(ms.end(), {lo + d, lo - 1 - d});
+  }
+  std::mt19937_64 rng(8);
+  for (int i = 0; i < 2000000; ++i) ms.push_back(kOne | (rng() & (kOne - 1)));
+  for (uint64_t m : ms) ASSERT_EQ(log2BitsTable(m), log2BitsLoop(m, 8)) << std::hex << m;
+}
+
+TEST(Log2Fixed, LambdaFromRho2MatchesLog2FixedOverTheWholeDoubleRange) {
+  std::mt19937_64 rng(9);
+  std::vector<double> xs = {std::numeric_limits<double>::min(), std::numeric_limits<double>::max(),
+                            std::numeric_limits<double>::denorm_min(), 1.0, 2.0, 0.5, 3.0};
+  for (int i = 0; i < 1000000; ++i) {
+    // Random finite positive doubles over every exponent (subnormals included).
+    const uint64_t bits = rng() & ~(uint64_t(1) << 63);
+    double x;
+    std::memcpy(&x, &bits, sizeof x);
+    if (std::isfinite(x) && x > 0.0) xs.push_back(x);
+  }
+  for (double x : xs) ASSERT_EQ(sample_detail::lambdaBaseFromRho2(x), int32_t(log2Fixed(x, 7))) << x;
 }
 
 TEST(Log2Fixed, HandlesSubnormalInputs) {

@@ -1,0 +1,132 @@
+// The sampler's plan cache (sample.h, detail::beginPlanCache) is speed only: with it open, every
+// implicit-LOD quad lookup gives the bits it gives with it closed, whether the quads repeat rho^2 (the
+// cache hits), change it, or alternate between units; and a new epoch forgets a unit whose sampler
+// changed in place (the same TexUnit address with other contents, as a reused draw state would be).
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "raster/sample.h"
+
+namespace tessera {
+namespace {
+
+TextureData noisyRgba8(uint32_t size) {
+  TextureDesc d;
+  d.kind = TextureKind::Tex2D;
+  d.format = Format::RGBA8;
+  d.width = d.height = size;
+  d.levels = 1;
+  while ((size >> d.levels) > 0) ++d.levels;
+  TextureData t(d);
+  std::mt19937 rng(5);
+  for (auto& level : t.levels)
+    for (auto& b : level) b = uint8_t(rng());
+  return t;
+}
+
+TexUnit unitOf(const TextureData* t, Filter minF, Wrap wrap) {
+  SamplerState s;
+  s.minFilter = minF;
+  s.magFilter = Filter::Linear;
+  s.wrapS = s.wrapT = wrap;
+  TexUnit u;
+  u.tex = t;
+  u.sampler = SamplerQ::from(s);
+  return u;
+}
+
+struct QuadIn {
+  float s[4], t[4], bias;
+};
+
+// Quads in runs that share derivatives (an affine mapping: the cache's hits) and runs that do not.
+std::vector<QuadIn> quads() {
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<float> pos(-3.0f, 3.0f), step(-0.05f, 0.05f);
+  std::vector<QuadIn> qs;
+  for (int run = 0; run < 200; ++run) {
+    const float dx = step(rng), dy = step(rng), ex = step(rng), ey = step(rng);
+    const float bias = run % 7 == 0 ? 0.5f : 0.0f;
+    for (int i = 0; i < 20; ++i) {
+      QuadIn q{};
+      const float s0 = run % 3 == 0 ? 0.25f : pos(rng), t0 = run % 3 == 0 ? 0.5f : pos(rng);
+      const float ddx = run % 2 ? dx : step(rng);
+      q.s[0] = s0, q.s[1] = s0 + ddx, q.s[2] = s0 + ex, q.s[3] = s0 + ddx + ex;
+      q.t[0] = t0, q.t[1] = t0 + dy, q.t[2] = t0 + ey, q.t[3] = t0 + dy + ey;
+      q.bias = bias;
+      qs.push_back(q);
+    }
+  }
+  return qs;
+}
+
+std::array<uint32_t, 16> bitsOf(const float (&out)[4][4]) {
+  std::array<uint32_t, 16> b{};
+  std::memcpy(b.data(), out, sizeof out);
+  return b;
+}
+
+TEST(PlanCache, OpenGivesTheBitsOfClosedForRepeatedAndChangingDerivativesOnTwoUnits) {
+  const TextureData tex = noisyRgba8(64);
+  const TexUnit a = unitOf(&tex, Filter::LinearMipmapLinear, Wrap::Repeat);
+  const TexUnit b = unitOf(&tex, Filter::NearestMipmapLinear, Wrap::MirroredRepeat);
+  const std::vector<QuadIn> qs = quads();
+  std::vector<std::array<uint32_t, 16>> closed;
+  for (size_t i = 0; i < qs.size(); ++i) {
+    float out[4][4];
+    sampleQuad2D(i % 5 == 4 ? b : a, qs[i].s, qs[i].t, qs[i].bias, out);
+    closed.push_back(bitsOf(out));
+  }
+  detail::beginPlanCache();
+  for (size_t i = 0; i < qs.size(); ++i) {
+    float out[4][4];
+    sampleQuad2D(i % 5 == 4 ? b : a, qs[i].s, qs[i].t, qs[i].bias, out);
+    ASSERT_EQ(bitsOf(out), closed[i]) << "quad " << i;
+  }
+  detail::endPlanCache();
+}
+
+TEST(PlanCache, ANewEpochForgetsAUnitChangedInPlace) {
+  const TextureData tex = noisyRgba8(32);
+  TexUnit u = unitOf(&tex, Filter::LinearMipmapLinear, Wrap::Repeat);
+  const float s[4] = {0.1f, 0.23f, 0.1f, 0.23f}, t[4] = {0.2f, 0.2f, 0.31f, 0.31f};  // lambda about 2
+  float expectNearest[4][4], got[4][4];
+  {
+    TexUnit n = unitOf(&tex, Filter::NearestMipmapNearest, Wrap::ClampToEdge);
+    sampleQuad2D(n, s, t, 0.0f, expectNearest);
+  }
+  detail::beginPlanCache();
+  sampleQuad2D(u, s, t, 0.0f, got);  // caches the trilinear plan of u
+  u = unitOf(&tex, Filter::NearestMipmapNearest, Wrap::ClampToEdge);  // same address, new sampler
+  detail::beginPlanCache();  // what the rasterizer does before the next triangle
+  sampleQuad2D(u, s, t, 0.0f, got);
+  detail::endPlanCache();
+  EXPECT_EQ(bitsOf(got), bitsOf(expectNearest));
+  float trilinear[4][4];
+  sampleQuad2D(unitOf(&tex, Filter::LinearMipmapLinear, Wrap::Repeat), s, t, 0.0f, trilinear);
+  EXPECT_NE(bitsOf(trilinear), bitsOf(expectNearest));  // the two samplers do differ here
+}
+
+TEST(PlanCache, IsClosedOutsideATile) {
+  // After endPlanCache a changed unit at the same address is seen without a new epoch.
+  const TextureData tex = noisyRgba8(32);
+  TexUnit u = unitOf(&tex, Filter::LinearMipmapLinear, Wrap::Repeat);
+  const float s[4] = {0.1f, 0.23f, 0.1f, 0.23f}, t[4] = {0.2f, 0.2f, 0.31f, 0.31f};  // lambda about 2
+  float first[4][4], expect[4][4], got[4][4];
+  detail::beginPlanCache();
+  sampleQuad2D(u, s, t, 0.0f, first);
+  detail::endPlanCache();
+  u = unitOf(&tex, Filter::NearestMipmapNearest, Wrap::ClampToEdge);
+  sampleQuad2D(u, s, t, 0.0f, got);
+  TexUnit n = unitOf(&tex, Filter::NearestMipmapNearest, Wrap::ClampToEdge);
+  sampleQuad2D(n, s, t, 0.0f, expect);
+  EXPECT_EQ(bitsOf(got), bitsOf(expect));
+  EXPECT_NE(bitsOf(first), bitsOf(expect));  // the two samplers do differ here
+}
+
+}  // namespace
+}  // namespace tessera
