@@ -13,6 +13,7 @@
 // (exact) and rounded to float once.
 #include "raster/sample.h"
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -540,18 +541,6 @@ struct PlanCache {
 };
 constinit thread_local PlanCache t_planCache;
 
-inline uint64_t bitsOf(double v) {
-  uint64_t b;
-  std::memcpy(&b, &v, sizeof b);
-  return b;
-}
-
-inline uint32_t bitsOf(float v) {
-  uint32_t b;
-  std::memcpy(&b, &v, sizeof b);
-  return b;
-}
-
 // Implicit-LOD quad lookup shared by the 2D and 2D-array forms (layers: per pixel, already selected).
 void sampleQuadImpl(const TexUnit& u, const float s[4], const float t[4], const uint32_t layers[4], float bias,
                     float out[4][4]) {
@@ -573,8 +562,8 @@ void sampleQuadImpl(const TexUnit& u, const float s[4], const float t[4], const 
     // rho^2 exactly as computeLambda forms it (same operands, same order).
     const double rx = dudx * dudx + dvdx * dvdx;
     const double ry = dudy * dudy + dvdy * dvdy;
-    const uint64_t rho2Bits = bitsOf(rx > ry ? rx : ry);
-    const uint32_t biasBits = bitsOf(bias);
+    const uint64_t rho2Bits = std::bit_cast<uint64_t>(rx > ry ? rx : ry);
+    const uint32_t biasBits = std::bit_cast<uint32_t>(bias);
     if (cache.validEpoch != cache.epoch || cache.unit != &u || cache.rho2Bits != rho2Bits ||
         cache.biasBits != biasBits) {
       cache.lambda8 = computeLambda(dudx, dvdx, dudy, dvdy, u.sampler, bias);
