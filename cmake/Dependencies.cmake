@@ -13,3 +13,6 @@ find_package(benchmark CONFIG REQUIRED)
 find_package(CLI11 CONFIG REQUIRED)
 find_package(nlohmann_json 3 CONFIG REQUIRED)
 find_package(fmt CONFIG REQUIRED)
+# libhwy-dev: Google Highway, the SIMD kernels of the sampler with run-time target dispatch
+# (raster/sample_simd.h).
+find_package(hwy CONFIG REQUIRED)

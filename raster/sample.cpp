@@ -23,6 +23,7 @@
 #include "raster/provenance.h"
 #include "raster/round.h"
 #include "raster/sample_detail.h"
+#include "raster/sample_simd.h"
 #include "raster/stage_times.h"
 
 namespace tessera {
@@ -437,7 +438,14 @@ void sampleN(const TexUnit& u, const Plan& p, int n, const float* s, const float
   }
   const bool border = p.wrapS == Wrap::ClampToBorder || p.wrapT == Wrap::ClampToBorder;
   switch (u.tex->desc.format) {
-    case Format::RGBA8: return sampleEach<Format::RGBA8>(border, p, n, s, t, layers, out);
+    case Format::RGBA8:
+      // A quad's LINEAR lookups in one layer go to the SIMD kernel (raster/sample_simd.h: same bits),
+      // which declines what it does not take.
+      if (n == 4 && p.linear && !border && layers[0] == layers[1] && layers[0] == layers[2] &&
+          layers[0] == layers[3] &&
+          sample_simd::sampleQuadRgba8Linear(p, layers[0] > p.lastLayer ? p.lastLayer : layers[0], s, t, out))
+        return;
+      return sampleEach<Format::RGBA8>(border, p, n, s, t, layers, out);
     case Format::R8: return sampleEach<Format::R8>(border, p, n, s, t, layers, out);
     case Format::RG32F: return sampleEach<Format::RG32F>(border, p, n, s, t, layers, out);
     case Format::RGBA32F: return sampleEach<Format::RGBA32F>(border, p, n, s, t, layers, out);

@@ -9,7 +9,7 @@ PKGS=(
   build-essential cmake ninja-build pkg-config
   libopenimageio-dev openimageio-tools libglm-dev libembree-dev libtbb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libcli11-dev nlohmann-json3-dev libfmt-dev
+  libcli11-dev nlohmann-json3-dev libfmt-dev libhwy-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri libopengl-dev libgles-dev
   libtinygltf-dev libtinyobjloader-dev libstb-dev libassimp-dev
 )

@@ -11,13 +11,18 @@
 // resource commands (resources_ms) per iteration.
 // `--stages` also turns on per-stage CPU times (stage_*_ms counters, raster/stage_times.h); they
 // cost a few cycle-counter reads per program batch. `--provenance` renders in provenance mode, the
-// mode every cross-check runs (per-pixel intervals, three program runs per quad).
+// mode every cross-check runs (per-pixel intervals, three program runs per quad). `--simd=NAME` runs
+// the sampler's SIMD kernel on one target (raster/sample_simd.h: avx3, avx2, sse4, ssse3, scalar) or
+// not at all (reference), so one binary times a kernel against the scalar filter it must equal.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 
+#include "base/error.h"
 #include "raster/cpu_backend.h"
+#include "raster/sample_simd.h"
 #include "tools/scenes/scenes.h"
 #include "tools/scenes/sweep_scenes.h"
 
@@ -100,12 +105,20 @@ int main(int argc, char** argv) {
       g_stages = true;
     } else if (std::strcmp(argv[i], "--provenance") == 0) {
       g_provenance = true;
+    } else if (std::strncmp(argv[i], "--simd=", 7) == 0) {
+      try {
+        sample_simd::forceTarget(argv[i] + 7);
+      } catch (const Error& e) {
+        std::fprintf(stderr, "bench_raster: --simd: %s\n", e.what());
+        return 2;
+      }
     } else {
       argv[n++] = argv[i];
     }
   }
   argc = n;
   registerAll();
+  benchmark::AddCustomContext("simd_target", sample_simd::activeTarget());
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

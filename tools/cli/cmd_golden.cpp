@@ -2,11 +2,14 @@
 //
 // golden/manifest.json maps each test name to one image file (golden/manifest.h). `check` re-renders
 // every scene and the atlas tree frames and demands bit-exact pixels (exit 1 on any difference or stale
-// entry); `update` rewrites the images and the manifest and prints what changed.
+// entry); `update` rewrites the images and the manifest and prints what changed. `check --simd T` runs
+// the sampler's SIMD kernel on target T (raster/sample_simd.h), so every target can be checked.
 #include <cstdio>
 #include <memory>
+#include <string>
 
 #include "golden/golden_run.h"
+#include "raster/sample_simd.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/repo_paths.h"
 #include "tools/scenes/scene_goldens.h"
@@ -39,9 +42,17 @@ void addGoldenCommands(CLI::App& app) {
   check->add_option("--dir", a->dir, "Golden directory")->capture_default_str();
   check->add_option("--railway", a->railway, "railway.glb, the real scene of the atlas tree goldens (data/README.md)")
       ->capture_default_str();
+  auto simd = std::make_shared<std::string>("best");
+  check
+      ->add_option("--simd", *simd,
+                   "Target of the sampler's SIMD kernel: best, avx3, avx2, sse4, ssse3 or scalar (those this build "
+                   "and CPU have), or reference (the scalar filter only). Every one must give the same bytes")
+      ->capture_default_str();
   // The defaults are repository paths: found from the clone's root or beside the build folder.
-  check->callback([a] {
+  check->callback([a, simd] {
     a->dir = repoPath(a->dir), a->railway = repoPath(a->railway);
+    sample_simd::forceTarget(*simd);  // Error (exit 2) naming the available targets
+    std::fprintf(stderr, "golden: sampler SIMD target %s\n", sample_simd::activeTarget().c_str());
     if (int rc = runGolden(*a, false)) throw CLI::RuntimeError(rc);
   });
   auto* update = golden->add_subcommand("update", "Regenerate golden images and the manifest; print what changed");
