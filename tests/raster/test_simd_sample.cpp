@@ -25,11 +25,11 @@ namespace tessera {
 namespace {
 
 // Restores the best target when a test ends, whatever it forced.
-struct TargetGuard {
-  ~TargetGuard() { sample_simd::forceTarget("best"); }
+struct SimdTargetGuard {
+  ~SimdTargetGuard() { sample_simd::forceTarget("best"); }
 };
 
-TextureData noisyRgba8(uint32_t w, uint32_t h, uint32_t layers, uint32_t seed) {
+TextureData simdTestTexture(uint32_t w, uint32_t h, uint32_t layers, uint32_t seed) {
   TextureDesc d;
   d.kind = layers > 1 ? TextureKind::Tex2DArray : TextureKind::Tex2D;
   d.format = Format::RGBA8;
@@ -45,7 +45,7 @@ TextureData noisyRgba8(uint32_t w, uint32_t h, uint32_t layers, uint32_t seed) {
   return t;
 }
 
-TexUnit unitOf(const TextureData* t, Filter minF, Filter magF, Wrap ws, Wrap wt) {
+TexUnit simdTestUnit(const TextureData* t, Filter minF, Filter magF, Wrap ws, Wrap wt) {
   SamplerState s;
   s.minFilter = minF;
   s.magFilter = magF;
@@ -57,20 +57,20 @@ TexUnit unitOf(const TextureData* t, Filter minF, Filter magF, Wrap ws, Wrap wt)
   return u;
 }
 
-struct Quad {
+struct SimdQuad {
   float s[4], t[4], r[4], bias;
 };
 
 // Random quads at several scales (magnified to minified), and quads whose 256 u lands exactly on a
 // half (ties, to even and to odd), near the kernel's limit |u| = 2^14, and NaN / infinite ones.
-std::vector<Quad> quads(float w, float h, uint32_t layers) {
+std::vector<SimdQuad> simdTestQuads(float w, float h, uint32_t layers) {
   std::mt19937_64 rng(77);
   std::uniform_real_distribution<float> pos(-4.0f, 4.0f), unit(0.0f, 1.0f);
   std::uniform_int_distribution<int> tie(-3000, 3000);
-  std::vector<Quad> qs;
+  std::vector<SimdQuad> qs;
   const float scales[] = {0.002f, 0.02f, 0.1f, 0.5f};
   for (int i = 0; i < 4000; ++i) {
-    Quad q{};
+    SimdQuad q{};
     const float step = scales[i % 4] * unit(rng);
     float s0 = pos(rng), t0 = pos(rng);
     if (i % 5 == 1) {  // 256 u = k + 1/2 exactly (w, h are powers of two in the tie cases)
@@ -87,7 +87,7 @@ std::vector<Quad> quads(float w, float h, uint32_t layers) {
     q.bias = float(i % 9) * 0.37f - 1.0f;
     qs.push_back(q);
   }
-  Quad bad{};
+  SimdQuad bad{};
   for (int k = 0; k < 4; ++k) bad.s[k] = bad.t[k] = 0.5f;
   bad.s[2] = std::numeric_limits<float>::quiet_NaN();
   qs.push_back(bad);
@@ -96,9 +96,9 @@ std::vector<Quad> quads(float w, float h, uint32_t layers) {
   return qs;
 }
 
-std::vector<std::array<uint32_t, 16>> lookups(const TexUnit& u, const std::vector<Quad>& qs) {
+std::vector<std::array<uint32_t, 16>> simdTestLookups(const TexUnit& u, const std::vector<SimdQuad>& qs) {
   std::vector<std::array<uint32_t, 16>> bits;
-  for (const Quad& q : qs) {
+  for (const SimdQuad& q : qs) {
     float out[4][4];
     if (u.tex->desc.layers > 1) {
       sampleQuad2DArray(u, q.s, q.t, q.r, q.bias, out);
@@ -112,7 +112,7 @@ std::vector<std::array<uint32_t, 16>> lookups(const TexUnit& u, const std::vecto
   return bits;
 }
 
-struct Case {
+struct SimdCase {
   const char* name;
   uint32_t w, h, layers;
   Filter minF, magF;
@@ -120,8 +120,8 @@ struct Case {
 };
 
 TEST(SimdSample, EveryTargetGivesTheReferenceBitsOnRandomAndTieQuads) {
-  TargetGuard guard;
-  const Case cases[] = {
+  SimdTargetGuard guard;
+  const SimdCase cases[] = {
       {"trilinear repeat 64x32", 64, 32, 1, Filter::LinearMipmapLinear, Filter::Linear, Wrap::Repeat, Wrap::Repeat},
       {"bilinear repeat 16x128", 16, 128, 1, Filter::Linear, Filter::Linear, Wrap::Repeat, Wrap::Repeat},
       {"trilinear clamp 37x23", 37, 23, 1, Filter::LinearMipmapLinear, Filter::Linear, Wrap::ClampToEdge,
@@ -140,16 +140,16 @@ TEST(SimdSample, EveryTargetGivesTheReferenceBitsOnRandomAndTieQuads) {
   const std::vector<std::string> targets = sample_simd::availableTargets();
   ASSERT_GE(targets.size(), 2u) << "at least one SIMD target and the reference";
   uint32_t seed = 1;
-  for (const Case& c : cases) {
-    const TextureData tex = noisyRgba8(c.w, c.h, c.layers, seed++);
-    const TexUnit u = unitOf(&tex, c.minF, c.magF, c.ws, c.wt);
-    const std::vector<Quad> qs = quads(float(c.w), float(c.h), c.layers);
+  for (const SimdCase& c : cases) {
+    const TextureData tex = simdTestTexture(c.w, c.h, c.layers, seed++);
+    const TexUnit u = simdTestUnit(&tex, c.minF, c.magF, c.ws, c.wt);
+    const std::vector<SimdQuad> qs = simdTestQuads(float(c.w), float(c.h), c.layers);
     sample_simd::forceTarget("reference");
-    const auto expect = lookups(u, qs);
+    const auto expect = simdTestLookups(u, qs);
     for (const std::string& target : targets) {
       sample_simd::forceTarget(target);
       ASSERT_EQ(sample_simd::activeTarget(), target);
-      const auto got = lookups(u, qs);
+      const auto got = simdTestLookups(u, qs);
       for (size_t i = 0; i < qs.size(); ++i)
         ASSERT_EQ(got[i], expect[i]) << c.name << ", target " << target << ", quad " << i << " s0 " << qs[i].s[0]
                                      << " t0 " << qs[i].t[0];
@@ -158,17 +158,17 @@ TEST(SimdSample, EveryTargetGivesTheReferenceBitsOnRandomAndTieQuads) {
 }
 
 // The plan of a 2D lookup at lambda8 (8.8) on unit u.
-sample_detail::Plan planOf(const TexUnit& u, int32_t lambda8) { return sample_detail::makePlan(u, lambda8); }
+sample_detail::Plan simdTestPlan(const TexUnit& u, int32_t lambda8) { return sample_detail::makePlan(u, lambda8); }
 
 TEST(SimdSample, TheKernelTakesRepeatOnPowersOfTwoAndClampToEdgeAndDeclinesTheRest) {
-  TargetGuard guard;
-  const TextureData pot = noisyRgba8(32, 16, 1, 3), npot = noisyRgba8(24, 20, 1, 4);
+  SimdTargetGuard guard;
+  const TextureData pot = simdTestTexture(32, 16, 1, 3), npot = simdTestTexture(24, 20, 1, 4);
   const float s[4] = {0.1f, 0.2f, 0.3f, 0.4f}, t[4] = {0.5f, 0.6f, 0.7f, -0.8f};
   float out[4][4];
   const auto takes = [&](const TextureData& tex, Filter minF, Filter magF, Wrap ws, Wrap wt, const float* ss,
                          int32_t lambda8 = 128) {
-    const TexUnit u = unitOf(&tex, minF, magF, ws, wt);
-    return sample_simd::sampleQuadRgba8Linear(planOf(u, lambda8), 0, ss, t, out);
+    const TexUnit u = simdTestUnit(&tex, minF, magF, ws, wt);
+    return sample_simd::sampleQuadRgba8Linear(simdTestPlan(u, lambda8), 0, ss, t, out);
   };
   const Filter tri = Filter::LinearMipmapLinear, lin = Filter::Linear;
   EXPECT_TRUE(takes(pot, tri, lin, Wrap::Repeat, Wrap::Repeat, s));
@@ -189,7 +189,7 @@ TEST(SimdSample, TheKernelTakesRepeatOnPowersOfTwoAndClampToEdgeAndDeclinesTheRe
 }
 
 TEST(SimdSample, AnUnknownTargetIsAClearErrorNamingTheAvailableOnes) {
-  TargetGuard guard;
+  SimdTargetGuard guard;
   try {
     sample_simd::forceTarget("neon9");
     FAIL() << "no error";
@@ -206,7 +206,7 @@ TEST(SimdSample, AnUnknownTargetIsAClearErrorNamingTheAvailableOnes) {
 class SimdGoldens : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(SimdGoldens, EveryGoldenImageIsReproducedBitExactly) {
-  TargetGuard guard;
+  SimdTargetGuard guard;
   sample_simd::forceTarget(GetParam());
   golden::GoldenOptions o;
   o.sceneImages = scenes::allSceneImages();
