@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "raster/fragops.h"
+#include "raster/fragops_simd.h"
 #include "raster/provenance.h"
 #include "raster/sample.h"
 #include "raster/tolerances.h"
@@ -98,7 +99,7 @@ class TriangleRasterizer {
  public:
   TriangleRasterizer(const Scene& scene, const TriSetup& t, RastScratch& s, PipelineStats& stats)
       : scene_(scene), t_(t), ds_(*scene.states[t.drawState]), s_(s), stats_(stats),
-        lateDepth_(ds_.program->writesDepth()) {
+        lateDepth_(ds_.program->writesDepth()), unorm8Quad_(unorm8QuadKernel()) {
     beginPlanCache();  // a new triangle: no lambda or plan of another one is reused (sample.h)
     const TargetView& tv = scene.target;
     depth_ = Plane::of(tv.depth, tv.level, t.layer);
@@ -241,6 +242,14 @@ class TriangleRasterizer {
             keep &= uint8_t(~(1u << p));
         stats_.fragments_depth_failed += quadPixels(uint32_t(before & ~keep));
       }
+      // writeFragment's unblended RGBA8 case, the common write: the quad's 16 values converted at once
+      // (raster/fragops_simd.h: toUnorm8's bytes).
+      static_assert(sizeof(QuadOut::Value) == 4 * sizeof(float), "a quad's colours are 16 packed floats");
+      uint8_t unorm[kMaxColorAttachments][16];
+      if (keep && !ds_.blend.enabled)
+        for (int a = 0; a < ds_.colorOutputs; ++a)
+          if (color_[a].base && color_[a].format == Format::RGBA8)
+            unorm8Quad_(s_.outs[n].color[a][0].f, unorm[a]);
       for (int p = 0; p < 4; ++p) {
         if (!(keep >> p & 1)) continue;
         const int32_t x = q.x + (p & 1), y = q.y + (p >> 1);
@@ -250,9 +259,7 @@ class TriangleRasterizer {
           if (!c.base) continue;
           uint8_t* texel = c.at(x, y);
           if (c.format == Format::RGBA8 && !ds_.blend.enabled) {
-            // writeFragment's unblended RGBA8 case, inline: the common write.
-            const float* f = s_.outs[n].color[a][p].f;
-            for (int k = 0; k < 4; ++k) texel[k] = toUnorm8(f[k]);
+            std::memcpy(texel, unorm[a] + 4 * p, 4);
           } else {
             writeFragment(c.format, texel, s_.outs[n].color[a][p].u, ds_.blend);
           }
@@ -294,6 +301,7 @@ class TriangleRasterizer {
   RastScratch& s_;
   PipelineStats& stats_;
   const bool lateDepth_;  // the program writes gl_FragDepth: the depth test runs after shading (F11)
+  const Unorm8QuadFn unorm8Quad_;  // the running SIMD target's unorm8 conversion, once per triangle
   Plane depth_;
   Plane color_[kMaxColorAttachments];
   size_t count_ = 0;

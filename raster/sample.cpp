@@ -425,6 +425,11 @@ inline void sampleEach(bool border, const Plan& p, int n, const float* s, const 
   }
 }
 
+// The RGBA8 quad kernel of the running SIMD target (raster/sample_simd.h), resolved once per triangle
+// by beginPlanCache() (a dispatch is a call into libhwy); outside a triangle, resolved per call.
+constinit thread_local sample_simd::Rgba8LinearFn t_rgba8Kernel = nullptr;
+constinit thread_local bool t_rgba8KernelSet = false;
+
 }  // namespace
 
 namespace sample_detail {
@@ -442,9 +447,10 @@ void sampleN(const TexUnit& u, const Plan& p, int n, const float* s, const float
       // A quad's LINEAR lookups in one layer go to the SIMD kernel (raster/sample_simd.h: same bits),
       // which declines what it does not take.
       if (n == 4 && p.linear && !border && layers[0] == layers[1] && layers[0] == layers[2] &&
-          layers[0] == layers[3] &&
-          sample_simd::sampleQuadRgba8Linear(p, layers[0] > p.lastLayer ? p.lastLayer : layers[0], s, t, out))
-        return;
+          layers[0] == layers[3]) {
+        const sample_simd::Rgba8LinearFn kernel = t_rgba8KernelSet ? t_rgba8Kernel : sample_simd::rgba8LinearKernel();
+        if (kernel && kernel(p, layers[0] > p.lastLayer ? p.lastLayer : layers[0], s, t, out)) return;
+      }
       return sampleEach<Format::RGBA8>(border, p, n, s, t, layers, out);
     case Format::R8: return sampleEach<Format::R8>(border, p, n, s, t, layers, out);
     case Format::RG32F: return sampleEach<Format::RG32F>(border, p, n, s, t, layers, out);
@@ -618,8 +624,13 @@ void setLodQuadLog(LodQuadLog* log) { t_lodLog = log; }
 void detail::beginPlanCache() {
   t_planCache.open = true;
   ++t_planCache.epoch;
+  t_rgba8Kernel = sample_simd::rgba8LinearKernel();
+  t_rgba8KernelSet = true;
 }
-void detail::endPlanCache() { t_planCache.open = false; }
+void detail::endPlanCache() {
+  t_planCache.open = false;
+  t_rgba8KernelSet = false;
+}
 void detail::setSampleTicks(uint64_t* ticks) { t_sampleTicks = ticks; }
 
 void sampleAtLambda(const TexUnit& u, float s, float t, uint32_t layer, int32_t lambda8, float out[4]) {

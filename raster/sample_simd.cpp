@@ -1,12 +1,7 @@
 // The RGBA8 LINEAR quad kernel on every Highway target (raster/sample_simd.h says what it accepts and
-// why its bits are the scalar filter's). Highway compiles this file once per target: everything
-// outside HWY_ONCE is per target, and HWY_ONCE holds the dispatch and the target controls.
-
-// Every attainable target, the one-lane scalar one included, so a test can run each of them
-// (detect_targets.h; without this Highway drops the targets below the compiler's baseline).
-#ifndef HWY_COMPILE_ALL_ATTAINABLE
-#define HWY_COMPILE_ALL_ATTAINABLE
-#endif
+// why its bits are the scalar filter's). Highway compiles this file once per target (the raster
+// library sets HWY_COMPILE_ALL_ATTAINABLE, raster/simd_targets.h): everything outside HWY_ONCE is per
+// target, and HWY_ONCE holds the dispatch.
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "raster/sample_simd.cpp"
@@ -155,7 +150,7 @@ bool QuadRgba8Linear(const Plan& p, uint32_t layer, const float* s, const float*
   return true;
 }
 
-const char* TargetName() { return hwy::TargetName(HWY_TARGET); }
+Rgba8LinearFn GetRgba8Linear() { return &QuadRgba8Linear; }
 
 }  // namespace HWY_NAMESPACE
 }  // namespace tessera::sample_simd
@@ -163,85 +158,20 @@ HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
 
-#include <algorithm>
-#include <atomic>
-#include <cctype>
-
-#include "base/error.h"
+#include "raster/simd_targets.h"
 
 namespace tessera::sample_simd {
 
-HWY_EXPORT(QuadRgba8Linear);
-HWY_EXPORT(TargetName);
+HWY_EXPORT(GetRgba8Linear);
 
-namespace {
-
-// Off: "reference", sample.cpp's scalar filter only. Relaxed: the switch is flipped between frames.
-std::atomic<bool> g_kernelOn{true};
-
-std::string lower(const char* s) {
-  std::string r(s);
-  for (char& c : r) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return r;
+Rgba8LinearFn rgba8LinearKernel() {
+  return simd::kernelsOn() ? HWY_DYNAMIC_DISPATCH(GetRgba8Linear)() : nullptr;
 }
-
-struct Compiled {
-  int64_t bits;
-  std::string name;
-};
-
-// The compiled targets this CPU runs, best first. Computed before any forceTarget() mocks the CPU
-// (forceTarget calls this first), so it is the real list.
-const std::vector<Compiled>& compiled() {
-  static const std::vector<Compiled> list = [] {
-    std::vector<Compiled> v;
-    for (int64_t bits : hwy::SupportedAndGeneratedTargets()) v.push_back({bits, lower(hwy::TargetName(bits))});
-    return v;  // lowest bit first, which in Highway's numbering is the best target
-  }();
-  return list;
-}
-
-}  // namespace
 
 bool sampleQuadRgba8Linear(const sample_detail::Plan& p, uint32_t layer, const float* s, const float* t,
                            float (*out)[4]) {
-  if (!g_kernelOn.load(std::memory_order_relaxed)) return false;
-  return HWY_DYNAMIC_DISPATCH(QuadRgba8Linear)(p, layer, s, t, out);
-}
-
-std::vector<std::string> availableTargets() {
-  std::vector<std::string> names;
-  for (const Compiled& c : compiled()) names.push_back(c.name);
-  names.push_back("reference");
-  return names;
-}
-
-std::string activeTarget() {
-  if (!g_kernelOn.load(std::memory_order_relaxed)) return "reference";
-  return lower(HWY_DYNAMIC_DISPATCH(TargetName)());
-}
-
-void forceTarget(const std::string& name) {
-  const std::vector<Compiled>& list = compiled();
-  if (name.empty() || name == "best") {
-    hwy::SetSupportedTargetsForTest(0);
-    g_kernelOn.store(true, std::memory_order_relaxed);
-    return;
-  }
-  if (name == "reference") {
-    hwy::SetSupportedTargetsForTest(0);
-    g_kernelOn.store(false, std::memory_order_relaxed);
-    return;
-  }
-  const auto it = std::find_if(list.begin(), list.end(), [&](const Compiled& c) { return c.name == name; });
-  if (it == list.end()) {
-    std::string names;
-    for (const std::string& n : availableTargets()) names += (names.empty() ? "" : ", ") + n;
-    throw Error("SIMD target '" + name + "' is not available in this build on this CPU; available: " + names +
-                " (or best)");
-  }
-  hwy::SetSupportedTargetsForTest(it->bits);
-  g_kernelOn.store(true, std::memory_order_relaxed);
+  const Rgba8LinearFn f = rgba8LinearKernel();
+  return f != nullptr && f(p, layer, s, t, out);
 }
 
 }  // namespace tessera::sample_simd

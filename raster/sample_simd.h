@@ -8,7 +8,6 @@
 // one array layer for the four lookups, w * h < 2^31 texels per layer, and |s * w|, |t * h| <= 2^14
 // for every lookup and level (NaN fails that). For anything else it returns false and writes nothing
 // the caller needs: the caller then runs the scalar filter, which stays the readable reference.
-// And the controls tests and `tessera ... --simd` use to run every target, or none (the reference).
 // Does not implement: NEAREST, other formats, other wraps, borders (all scalar), provenance mode's
 // interval lookups (they call the scalar filter through sampleN with the kernel or without: same bits).
 //
@@ -27,9 +26,6 @@
 #pragma once
 
 #include <cstdint>
-#include <string>
-#include <vector>
-
 #include "raster/sample_detail.h"
 
 namespace tessera::sample_simd {
@@ -37,17 +33,15 @@ namespace tessera::sample_simd {
 // The quad kernel: out[i] = RGBA of lookup i at (s[i], t[i]) in `layer` (already clamped to
 // p.lastLayer), or false when the plan or a coordinate is outside what the kernel takes (see above).
 // Precondition: p is complete and its texture is RGBA8.
+using Rgba8LinearFn = bool (*)(const sample_detail::Plan& p, uint32_t layer, const float* s, const float* t,
+                               float (*out)[4]);
+
+// The kernel of the target running now (raster/simd_targets.h), nullptr under "reference". Resolve it
+// once per triangle, not per quad: the dispatch is a call into libhwy.
+Rgba8LinearFn rgba8LinearKernel();
+
+// rgba8LinearKernel() and a call of it; false under "reference".
 bool sampleQuadRgba8Linear(const sample_detail::Plan& p, uint32_t layer, const float* s, const float* t,
                            float (*out)[4]);
-
-// The SIMD targets compiled into this build that this CPU runs, best first, by name ("avx3", "avx2",
-// "sse4", "ssse3", "scalar"), then "reference" (the kernel off: sample.cpp's scalar filter only).
-std::vector<std::string> availableTargets();
-// The target the kernel runs on now ("reference" when it is off).
-std::string activeTarget();
-// Runs the kernel on `name` from now on, in every thread ("" or "best": the best available again).
-// Throws Error naming the available targets when `name` is not one of them. Not for use while a frame
-// renders on another thread.
-void forceTarget(const std::string& name);
 
 }  // namespace tessera::sample_simd

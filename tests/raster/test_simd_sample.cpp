@@ -19,6 +19,7 @@
 #include "raster/sample.h"
 #include "raster/sample_detail.h"
 #include "raster/sample_simd.h"
+#include "raster/simd_targets.h"
 #include "tools/scenes/scene_goldens.h"
 
 namespace tessera {
@@ -26,7 +27,7 @@ namespace {
 
 // Restores the best target when a test ends, whatever it forced.
 struct SimdTargetGuard {
-  ~SimdTargetGuard() { sample_simd::forceTarget("best"); }
+  ~SimdTargetGuard() { simd::forceTarget("best"); }
 };
 
 TextureData simdTestTexture(uint32_t w, uint32_t h, uint32_t layers, uint32_t seed) {
@@ -137,18 +138,18 @@ TEST(SimdSample, EveryTargetGivesTheReferenceBitsOnRandomAndTieQuads) {
       {"border 32x32", 32, 32, 1, Filter::Linear, Filter::Linear, Wrap::ClampToBorder, Wrap::Repeat},
       {"nearest mag 32x32", 32, 32, 1, Filter::NearestMipmapNearest, Filter::Nearest, Wrap::Repeat, Wrap::Repeat},
   };
-  const std::vector<std::string> targets = sample_simd::availableTargets();
+  const std::vector<std::string> targets = simd::availableTargets();
   ASSERT_GE(targets.size(), 2u) << "at least one SIMD target and the reference";
   uint32_t seed = 1;
   for (const SimdCase& c : cases) {
     const TextureData tex = simdTestTexture(c.w, c.h, c.layers, seed++);
     const TexUnit u = simdTestUnit(&tex, c.minF, c.magF, c.ws, c.wt);
     const std::vector<SimdQuad> qs = simdTestQuads(float(c.w), float(c.h), c.layers);
-    sample_simd::forceTarget("reference");
+    simd::forceTarget("reference");
     const auto expect = simdTestLookups(u, qs);
     for (const std::string& target : targets) {
-      sample_simd::forceTarget(target);
-      ASSERT_EQ(sample_simd::activeTarget(), target);
+      simd::forceTarget(target);
+      ASSERT_EQ(simd::activeTarget(), target);
       const auto got = simdTestLookups(u, qs);
       for (size_t i = 0; i < qs.size(); ++i)
         ASSERT_EQ(got[i], expect[i]) << c.name << ", target " << target << ", quad " << i << " s0 " << qs[i].s[0]
@@ -184,21 +185,21 @@ TEST(SimdSample, TheKernelTakesRepeatOnPowersOfTwoAndClampToEdgeAndDeclinesTheRe
   EXPECT_TRUE(takes(pot, lin, lin, Wrap::Repeat, Wrap::Repeat, edge));
   EXPECT_FALSE(takes(pot, lin, lin, Wrap::Repeat, Wrap::Repeat, over));
   EXPECT_FALSE(takes(pot, lin, lin, Wrap::Repeat, Wrap::Repeat, nan));
-  sample_simd::forceTarget("reference");
+  simd::forceTarget("reference");
   EXPECT_FALSE(takes(pot, tri, lin, Wrap::Repeat, Wrap::Repeat, s)) << "the reference runs no kernel";
 }
 
 TEST(SimdSample, AnUnknownTargetIsAClearErrorNamingTheAvailableOnes) {
   SimdTargetGuard guard;
   try {
-    sample_simd::forceTarget("neon9");
+    simd::forceTarget("neon9");
     FAIL() << "no error";
   } catch (const Error& e) {
     const std::string m = e.what();
     EXPECT_NE(m.find("'neon9'"), std::string::npos) << m;
     EXPECT_NE(m.find("reference"), std::string::npos) << m;
   }
-  EXPECT_EQ(sample_simd::activeTarget(), sample_simd::availableTargets().front()) << "the best target still runs";
+  EXPECT_EQ(simd::activeTarget(), simd::availableTargets().front()) << "the best target still runs";
 }
 
 // Every golden image, with the kernel on each target in turn (issue 13 section 4): the built-in scenes
@@ -207,7 +208,7 @@ class SimdGoldens : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(SimdGoldens, EveryGoldenImageIsReproducedBitExactly) {
   SimdTargetGuard guard;
-  sample_simd::forceTarget(GetParam());
+  simd::forceTarget(GetParam());
   golden::GoldenOptions o;
   o.sceneImages = scenes::allSceneImages();
   o.dir = std::string(TESSERA_SOURCE_DIR) + "/golden";
@@ -224,7 +225,7 @@ TEST_P(SimdGoldens, EveryGoldenImageIsReproducedBitExactly) {
 #if defined(__SANITIZE_ADDRESS__)
 const std::vector<std::string> kGoldenTargets = {"scalar"};
 #else
-const std::vector<std::string> kGoldenTargets = sample_simd::availableTargets();
+const std::vector<std::string> kGoldenTargets = simd::availableTargets();
 #endif
 
 INSTANTIATE_TEST_SUITE_P(EveryTarget, SimdGoldens, ::testing::ValuesIn(kGoldenTargets),

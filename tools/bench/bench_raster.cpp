@@ -22,7 +22,7 @@
 
 #include "base/error.h"
 #include "raster/cpu_backend.h"
-#include "raster/sample_simd.h"
+#include "raster/simd_targets.h"
 #include "tools/scenes/scenes.h"
 #include "tools/scenes/sweep_scenes.h"
 
@@ -107,7 +107,7 @@ int main(int argc, char** argv) {
       g_provenance = true;
     } else if (std::strncmp(argv[i], "--simd=", 7) == 0) {
       try {
-        sample_simd::forceTarget(argv[i] + 7);
+        simd::forceTarget(argv[i] + 7);
       } catch (const Error& e) {
         std::fprintf(stderr, "bench_raster: --simd: %s\n", e.what());
         return 2;
@@ -118,7 +118,7 @@ int main(int argc, char** argv) {
   }
   argc = n;
   registerAll();
-  benchmark::AddCustomContext("simd_target", sample_simd::activeTarget());
+  benchmark::AddCustomContext("simd_target", simd::activeTarget());
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

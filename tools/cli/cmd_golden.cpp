@@ -9,7 +9,7 @@
 #include <string>
 
 #include "golden/golden_run.h"
-#include "raster/sample_simd.h"
+#include "raster/simd_targets.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/repo_paths.h"
 #include "tools/scenes/scene_goldens.h"
@@ -51,8 +51,8 @@ void addGoldenCommands(CLI::App& app) {
   // The defaults are repository paths: found from the clone's root or beside the build folder.
   check->callback([a, simd] {
     a->dir = repoPath(a->dir), a->railway = repoPath(a->railway);
-    sample_simd::forceTarget(*simd);  // Error (exit 2) naming the available targets
-    std::fprintf(stderr, "golden: sampler SIMD target %s\n", sample_simd::activeTarget().c_str());
+    simd::forceTarget(*simd);  // Error (exit 2) naming the available targets
+    std::fprintf(stderr, "golden: sampler SIMD target %s\n", simd::activeTarget().c_str());
     if (int rc = runGolden(*a, false)) throw CLI::RuntimeError(rc);
   });
   auto* update = golden->add_subcommand("update", "Regenerate golden images and the manifest; print what changed");

@@ -1,0 +1,61 @@
+// The unorm8 conversion kernel on every Highway target (raster/fragops_simd.h says why its bytes are
+// toUnorm8's). Highway compiles this file once per target; HWY_ONCE holds the dispatch.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "raster/fragops_simd.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+#include "raster/fragops_simd.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace tessera::detail {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+void Unorm8Quad(const float* in, uint8_t* out) {
+  const hn::CappedTag<double, 4> d;  // one lane on the scalar target, two vectors on 128-bit ones
+  const hn::Rebind<float, decltype(d)> df;
+  const hn::Rebind<int32_t, decltype(d)> di;
+  const hn::Rebind<uint8_t, decltype(d)> du8;
+  const size_t n = hn::Lanes(d);
+  const auto zero = hn::Zero(d), one = hn::Set(d, 1.0), max = hn::Set(d, 255.0);
+  const auto magic = hn::Set(d, 6755399441055744.0);  // 1.5 * 2^52
+  for (size_t off = 0; off < 16; off += n) {
+    const auto c = hn::PromoteTo(d, hn::LoadU(df, in + off));
+    const auto r = hn::Sub(hn::Add(hn::Mul(c, max), magic), magic);  // c * 255 rounded half to even
+    // toUnorm8's order: !(c > 0) (NaN included) -> 0, else c >= 1 -> 255, else r.
+    const auto v = hn::IfThenElse(hn::Gt(c, zero), hn::IfThenElse(hn::Ge(c, one), max, r), zero);
+    hn::StoreU(hn::DemoteTo(du8, hn::DemoteTo(di, v)), du8, out + off);  // integers in [0, 255]: exact
+  }
+}
+
+Unorm8QuadFn GetUnorm8Quad() { return &Unorm8Quad; }
+
+}  // namespace HWY_NAMESPACE
+}  // namespace tessera::detail
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+
+#include "raster/fragops.h"
+#include "raster/simd_targets.h"
+
+namespace tessera::detail {
+
+HWY_EXPORT(GetUnorm8Quad);
+
+namespace {
+
+void scalarUnorm8Quad(const float* in, uint8_t* out) {
+  for (int i = 0; i < 16; ++i) out[i] = toUnorm8(in[i]);
+}
+
+}  // namespace
+
+Unorm8QuadFn unorm8QuadKernel() {
+  return simd::kernelsOn() ? HWY_DYNAMIC_DISPATCH(GetUnorm8Quad)() : &scalarUnorm8Quad;
+}
+
+}  // namespace tessera::detail
+
+#endif  // HWY_ONCE
