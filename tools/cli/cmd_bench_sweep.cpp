@@ -19,6 +19,7 @@
 #include "base/atomic_file.h"
 #include "base/error.h"
 #include "raster/image_io.h"
+#include "raster/simd_targets.h"
 #include "tools/cli/bench_sweep.h"
 #include "tools/cli/gl_options.h"
 #include "tools/cli/output_directory.h"
@@ -255,6 +256,8 @@ void runSweep(const SweepArgs& a) {
       {"repeat", repeat},
       {"threads", threads},
       {"hardware_threads", std::thread::hardware_concurrency()},
+      // The workers inherit the default: the best compiled SIMD target this CPU runs (raster/simd_targets.h).
+      {"simd_target", simd::activeTarget()},
       {"timing",
        "frame only: the draws and clears through the last tile (oracle, StageTimes::frameMs) or through glFinish "
        "(GL, GlBackend::lastFrameTimes); validation and resource commands excluded; median, p10, p90 of the timed "
