@@ -6,7 +6,6 @@
 #include <cstring>
 
 #include "raster/fragops.h"
-#include "raster/fragops_simd.h"
 #include "raster/provenance.h"
 #include "raster/sample.h"
 #include "raster/tolerances.h"
@@ -99,7 +98,7 @@ class TriangleRasterizer {
  public:
   TriangleRasterizer(const Scene& scene, const TriSetup& t, RastScratch& s, PipelineStats& stats)
       : scene_(scene), t_(t), ds_(*scene.states[t.drawState]), s_(s), stats_(stats),
-        lateDepth_(ds_.program->writesDepth()), unorm8Quad_(unorm8QuadKernel()) {
+        lateDepth_(ds_.program->writesDepth()), unorm8Quad_(s.unorm8Quad) {
     beginPlanCache();  // a new triangle: no lambda or plan of another one is reused (sample.h)
     const TargetView& tv = scene.target;
     depth_ = Plane::of(tv.depth, tv.level, t.layer);
@@ -301,7 +300,7 @@ class TriangleRasterizer {
   RastScratch& s_;
   PipelineStats& stats_;
   const bool lateDepth_;  // the program writes gl_FragDepth: the depth test runs after shading (F11)
-  const Unorm8QuadFn unorm8Quad_;  // the running SIMD target's unorm8 conversion, once per triangle
+  const Unorm8QuadFn unorm8Quad_;  // the running SIMD target's unorm8 conversion (RastScratch)
   Plane depth_;
   Plane color_[kMaxColorAttachments];
   size_t count_ = 0;
@@ -316,6 +315,9 @@ void rasterizeTile(const Scene& scene, size_t tileIndex, RastScratch& scratch, P
   const uint64_t tile0 = scene.timeStages ? stageClock() : 0;
   if (scene.timeStages) setSampleTicks(&scratch.ticks.t[kStageSample]);
   ++stats.tiles_rasterized;
+  // The SIMD kernels once per tile (a dispatch calls into libhwy; the target cannot change mid-frame).
+  scratch.unorm8Quad = unorm8QuadKernel();
+  bindSampleKernels();
   const int32_t tx = int32_t(tileIndex % size_t(scene.tilesX)), ty = int32_t(tileIndex / size_t(scene.tilesX));
   const TileRect tile{tx * kTileSize, ty * kTileSize, std::min((tx + 1) * kTileSize, scene.target.width) - 1,
                       std::min((ty + 1) * kTileSize, scene.target.height) - 1};
@@ -342,6 +344,7 @@ void rasterizeTile(const Scene& scene, size_t tileIndex, RastScratch& scratch, P
     }
   }
   endPlanCache();
+  unbindSampleKernels();
   if (scene.lod) setLodQuadLog(nullptr);  // vertex stages on this thread must not append to it
   if (scene.timeStages) {
     setSampleTicks(nullptr);

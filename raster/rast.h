@@ -13,6 +13,7 @@
 #include <cstring>
 #include <vector>
 
+#include "raster/fragops_simd.h"
 #include "raster/pipeline.h"
 #include "raster/stage_times.h"
 
@@ -26,6 +27,8 @@ struct RastScratch {
   std::vector<uint8_t> live = std::vector<uint8_t>(kBatch);  // covered and depth-passed pixels
   LodQuadLog lodLog;  // LOD probe: the lookups of the quad being shaded (Scene::lod)
   StageTicks ticks;   // Scene::timeStages: this thread's time per stage (stage_times.h)
+  // The colour write's unorm8 kernel (raster/fragops_simd.h), resolved per tile by rasterizeTile.
+  Unorm8QuadFn unorm8Quad = nullptr;
 };
 
 void rasterizeTile(const Scene& scene, size_t tileIndex, RastScratch& scratch, PipelineStats& stats);

@@ -425,8 +425,8 @@ inline void sampleEach(bool border, const Plan& p, int n, const float* s, const 
   }
 }
 
-// The RGBA8 quad kernel of the running SIMD target (raster/sample_simd.h), resolved once per triangle
-// by beginPlanCache() (a dispatch is a call into libhwy); outside a triangle, resolved per call.
+// The RGBA8 quad kernel of the running SIMD target (raster/sample_simd.h), resolved once per tile by
+// bindSampleKernels() (a dispatch is a call into libhwy); outside a tile, resolved per call.
 constinit thread_local sample_simd::Rgba8LinearFn t_rgba8Kernel = nullptr;
 constinit thread_local bool t_rgba8KernelSet = false;
 
@@ -624,13 +624,13 @@ void setLodQuadLog(LodQuadLog* log) { t_lodLog = log; }
 void detail::beginPlanCache() {
   t_planCache.open = true;
   ++t_planCache.epoch;
+}
+void detail::endPlanCache() { t_planCache.open = false; }
+void detail::bindSampleKernels() {
   t_rgba8Kernel = sample_simd::rgba8LinearKernel();
   t_rgba8KernelSet = true;
 }
-void detail::endPlanCache() {
-  t_planCache.open = false;
-  t_rgba8KernelSet = false;
-}
+void detail::unbindSampleKernels() { t_rgba8KernelSet = false; }
 void detail::setSampleTicks(uint64_t* ticks) { t_sampleTicks = ticks; }
 
 void sampleAtLambda(const TexUnit& u, float s, float t, uint32_t layer, int32_t lambda8, float out[4]) {

@@ -92,6 +92,11 @@ namespace detail {
 // closed (tests/raster/test_plan_cache.cpp).
 void beginPlanCache();
 void endPlanCache();
+// The calling thread's SIMD kernels (raster/sample_simd.h), resolved once for a tile's work instead of
+// per triangle (a dispatch calls into libhwy): set before a tile, cleared after it; without them a
+// lookup resolves the kernel itself. The target must not change in between (simd::forceTarget).
+void bindSampleKernels();
+void unbindSampleKernels();
 }  // namespace detail
 
 }  // namespace tessera
