@@ -90,22 +90,35 @@ constexpr size_t kSetupChunk = 256;
 // turns one triangle into at most kMaxClipPolygon - 2.
 static_assert(kSetupChunk * (kMaxClipPolygon - 2) <= 65536, "TileCmd::slot cannot address a chunk's block");
 
-// A per-draw array kept across draws and left uninitialised: every element a draw reads, the draw has
-// written first. A std::vector of the same size zero-filled it on the calling thread, which for a
-// setup-bound draw (300k vertices, 80 MB of VertexIn + VertexOut) cost more than the whole pipeline.
+// An array that draws append to and setup empties, kept across frames and left uninitialised: every
+// element setup reads, a draw has written first. (A std::vector zero-fills on growth, which for a
+// setup-bound draw, 300k vertices and 80 MB of VertexIn + VertexOut, cost more than the whole
+// pipeline.) Growing copies what is there; the element types are trivially copyable.
 template <class T>
-struct ReusedArray {
-  static_assert(std::is_trivially_default_constructible_v<T>);
+struct AppendArray {
+  static_assert(std::is_trivially_copyable_v<T> && std::is_trivially_default_constructible_v<T>);
   std::unique_ptr<T[]> data;
-  size_t capacity = 0;
-  T* get(size_t n) {
-    if (n > capacity) {
-      data.reset(new T[n]);  // default-initialised: no stores, no page touched here
-      capacity = n;
+  size_t size = 0, capacity = 0;
+  // n more elements at the end (their address holds until the next append).
+  T* append(size_t n) {
+    if (size + n > capacity) {
+      const size_t grown = std::max(size + n, capacity * 2);
+      std::unique_ptr<T[]> next(new T[grown]);
+      if (size > 0) std::memcpy(next.get(), data.get(), size * sizeof(T));
+      data = std::move(next);
+      capacity = grown;
     }
-    return data.get();
+    T* p = data.get() + size;
+    size += n;
+    return p;
   }
+  void clear() { size = 0; }
 };
+
+// Triangles whose setup waits for the next setupPending(). Small draws (a city block: 257 draws of
+// about 80 triangles) then share one parallel setup instead of each running its one chunk on the
+// calling thread; a draw that brings the total to this bound is set up at once, which bounds memory.
+constexpr size_t kPendingTriangles = 65536;
 
 }  // namespace
 
@@ -139,9 +152,20 @@ struct CpuBackend::Impl {
   Scene scene;
   PipelineStats stats;
   std::vector<SetupSink> sinks;  // reused across draws
-  ReusedArray<uint32_t> drawIndices;
-  ReusedArray<VertexIn> drawIn;
-  ReusedArray<VertexOut> drawOut;
+  // Draws shaded but not yet set up (setupPending): their parameters, indices and vertices, in order.
+  struct PendingDraw {
+    SetupParams params;
+    uint32_t triCount = 0;
+    bool dense = false;
+    uint32_t lo = 0;          // dense: the lowest index, vertex i of the draw is at lo + i
+    size_t idx = 0, vtx = 0;  // offsets into pendingIdx and pendingIn / pendingOut
+    size_t firstChunk = 0;    // setupPending: the draw's first chunk among all pending chunks
+  };
+  std::vector<PendingDraw> pending;
+  size_t pendingTris = 0;
+  AppendArray<uint32_t> pendingIdx;
+  AppendArray<VertexIn> pendingIn;
+  AppendArray<VertexOut> pendingOut;
   // Texel and buffer storage of the previous frame (storage_pool.h); what this frame does not take is
   // released when it ends (CpuBackend::execute).
   StoragePool storage;
@@ -195,6 +219,7 @@ struct CpuBackend::Impl {
   }
 
   void flush() {
+    setupPending();
     if (scene.empty()) return;
     const size_t tiles = scene.bins.size();
     tbb::enumerable_thread_specific<PipelineStats> local;
@@ -242,6 +267,7 @@ struct CpuBackend::Impl {
   }
 
   void clear(TileOp op, uint32_t attachment, const std::array<uint32_t, 4>& bits) {
+    setupPending();  // the pending draws' triangles go into the bins before the clear
     Rect r{0, 0, scene.target.width, scene.target.height};
     if (scissor.enabled) r = intersect(r, scissor.rect);
     if (r.w == 0 || r.h == 0) return;
@@ -353,15 +379,19 @@ struct CpuBackend::Impl {
     // Vertex indices of the draw, then the distinct vertices to shade. Shading every index of the
     // draw's range keeps the vertex stage a pure function of the index.
     const uint32_t n = triCount * 3;
-    uint32_t* const idx = drawIndices.get(n);
+    PendingDraw pd;
+    pd.triCount = triCount;
+    pd.idx = pendingIdx.size;
+    uint32_t* const idx = pendingIdx.append(n);
     for (uint32_t i = 0; i < n; ++i) idx[i] = d.indexed ? readIndex(d.first + i) : d.first + i;
     uint32_t lo = idx[0], hi = idx[0];
     for (uint32_t i = 0; i < n; ++i) lo = std::min(lo, idx[i]), hi = std::max(hi, idx[i]);
     const bool dense = uint64_t(hi - lo) + 1 <= uint64_t(n) * 2;
     const size_t shadeCount = dense ? size_t(hi - lo) + 1 : size_t(n);
+    pd.dense = dense, pd.lo = lo, pd.vtx = pendingIn.size;
     // Written in full below: fetchVertex sets every attribute and the id, `out` is zeroed per chunk.
-    VertexIn* const in = drawIn.get(shadeCount);
-    VertexOut* const out = drawOut.get(shadeCount);
+    VertexIn* const in = pendingIn.append(shadeCount);
+    VertexOut* const out = pendingOut.append(shadeCount);
     const bool timing = scene.timeStages;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, shadeCount, kVertexChunk), [&](const tbb::blocked_range<size_t>& r) {
       const uint64_t t0 = timing ? stageClock() : 0;
@@ -373,7 +403,7 @@ struct CpuBackend::Impl {
       if (timing) scratch.local().ticks.t[kStageVertex] += stageClock() - t0;
     });
 
-    SetupParams params;
+    SetupParams& params = pd.params;
     params.viewport = viewport;
     params.clampRect = clampRect();
     params.raster = raster;
@@ -381,29 +411,53 @@ struct CpuBackend::Impl {
     params.varyings = ds.varyings;
     params.provenance = options.provenance;
     params.timeStages = timing;
-    const bool layered = target.layer == kLayered;
-    // Setup runs in parallel over fixed chunks of triangles, each chunk into its own sink; the sinks
-    // are appended in chunk order, so the bins see the triangles in submission order whatever the
-    // thread count (setup of one triangle never reads another's).
-    const size_t chunks = (size_t(triCount) + kSetupChunk - 1) / kSetupChunk;
+    pending.push_back(pd);
+    pendingTris += triCount;
+    if (pendingTris >= kPendingTriangles) setupPending();
+  }
+
+  // Sets up every pending draw and bins its triangles. Setup runs in parallel over fixed chunks of
+  // triangles (a chunk never spans two draws), each chunk into its own sink; the sinks are appended in
+  // chunk order, so the bins see the triangles in submission order whatever the thread count and
+  // however many draws wait (setup of one triangle never reads another's, and nothing between the
+  // draws touches the bins: a clear or a flush calls this first).
+  void setupPending() {
+    if (pending.empty()) return;
+    size_t chunks = 0;
+    for (PendingDraw& p : pending) {
+      p.firstChunk = chunks;
+      chunks += (size_t(p.triCount) + kSetupChunk - 1) / kSetupChunk;
+    }
     if (sinks.size() < chunks) sinks.resize(chunks);
     // A sink whose block went into the scene gets a spare one, with the capacity of an earlier flush
     // or frame, so a steady sequence of frames allocates no triangle storage (serial: the spares are
     // shared).
     for (size_t c = 0; c < chunks; ++c)
       if (sinks[c].tris.capacity() == 0) sinks[c].tris = scene.takeSpareBlock();
+    const bool layered = target.layer == kLayered;
+    const bool timing = scene.timeStages;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
       const uint64_t setup0 = timing ? stageClock() : 0;
       for (size_t c = r.begin(); c != r.end(); ++c) {
+        // The draw of chunk c: the last one whose first chunk is <= c.
+        const auto it = std::upper_bound(pending.begin(), pending.end(), c,
+                                         [](size_t x, const PendingDraw& p) { return x < p.firstChunk; });
+        const PendingDraw& p = *(it - 1);
+        const SetupParams& params = p.params;
+        const DrawState& ds = *scene.states[params.stateIndex];
+        const uint32_t* const idx = pendingIdx.data.get() + p.idx;
+        const VertexIn* const in = pendingIn.data.get() + p.vtx;
+        const VertexOut* const out = pendingOut.data.get() + p.vtx;
         SetupSink& sink = sinks[c];
         sink.clear();
         sink.tilesX = scene.tilesX;
-        const uint32_t t0 = uint32_t(c * kSetupChunk), t1 = std::min<uint32_t>(triCount, t0 + uint32_t(kSetupChunk));
+        const uint32_t t0 = uint32_t((c - p.firstChunk) * kSetupChunk);
+        const uint32_t t1 = std::min<uint32_t>(p.triCount, t0 + uint32_t(kSetupChunk));
         for (uint32_t t = t0; t < t1; ++t) {
           VertexOut v[3];
           const VertexIn* vin[3];
           for (int k = 0; k < 3; ++k) {
-            const size_t s = dense ? idx[3 * t + uint32_t(k)] - lo : 3 * t + uint32_t(k);
+            const size_t s = p.dense ? idx[3 * t + uint32_t(k)] - p.lo : 3 * t + uint32_t(k);
             v[k] = out[s];
             vin[k] = &in[s];
           }
@@ -442,6 +496,9 @@ struct CpuBackend::Impl {
       for (size_t c = 0; c < chunks; ++c) clip += sinks[c].clipTicks;
       scratch.local().ticks.t[kStageClip] += clip;
     }
+    pending.clear();
+    pendingTris = 0;
+    pendingIdx.clear(), pendingIn.clear(), pendingOut.clear();
   }
 
   // Takes over the capacity of an earlier frame's backend: the spare triangle blocks, the emptied
@@ -452,9 +509,10 @@ struct CpuBackend::Impl {
     scene.spareBlocks = std::move(old.scene.spareBlocks);
     scene.bins = std::move(old.scene.bins);
     sinks = std::move(old.sinks);
-    drawIndices = std::move(old.drawIndices);
-    drawIn = std::move(old.drawIn);
-    drawOut = std::move(old.drawOut);
+    pendingIdx = std::move(old.pendingIdx);
+    pendingIn = std::move(old.pendingIn);
+    pendingOut = std::move(old.pendingOut);
+    pendingIdx.clear(), pendingIn.clear(), pendingOut.clear();
     for (auto& t : old.textures)
       if (t)
         for (auto& level : t->levels) storage.give(std::move(level));
