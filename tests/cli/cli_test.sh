@@ -523,6 +523,7 @@ PY
     refused 2 "--buildings: Value 0 not in range 1 to 1000000" "$tessera" city --preset berlin --buildings 0 -o c
     refused 2 "Could not convert: --seed = abc" "$tessera" city --preset berlin --seed abc -o c
     refused 2 "--threads 'abc': not a whole number" "$tessera" render blend --threads abc
+    refused 2 "SIMD target 'neon' is not available in this build on this CPU; available:" "$tessera" golden check --simd neon
     # Help is no error.
     "$tessera" --help > help.txt || fail "--help exits $?"
     "$tessera" mta render --help > help.txt || fail "mta render --help exits $?"
