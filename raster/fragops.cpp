@@ -8,20 +8,6 @@
 
 namespace tessera::detail {
 
-bool depthPasses(CompareFunc f, float incoming, float stored) {
-  switch (f) {
-    case CompareFunc::Never: return false;
-    case CompareFunc::Less: return incoming < stored;
-    case CompareFunc::Equal: return incoming == stored;
-    case CompareFunc::LEqual: return incoming <= stored;
-    case CompareFunc::Greater: return incoming > stored;
-    case CompareFunc::NotEqual: return incoming != stored;
-    case CompareFunc::GEqual: return incoming >= stored;
-    case CompareFunc::Always: return true;
-    default: return false;
-  }
-}
-
 namespace {
 
 inline double clamp01(double v) { return v > 0.0 ? (v < 1.0 ? v : 1.0) : 0.0; }  // NaN -> 0

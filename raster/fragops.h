@@ -18,7 +18,20 @@
 
 namespace tessera::detail {
 
-bool depthPasses(CompareFunc f, float incoming, float stored);
+// The depth test (GL 4.6 §17.3.4). Inline: the early test calls it per pixel of every covered quad.
+inline bool depthPasses(CompareFunc f, float incoming, float stored) {
+  switch (f) {
+    case CompareFunc::Never: return false;
+    case CompareFunc::Less: return incoming < stored;
+    case CompareFunc::Equal: return incoming == stored;
+    case CompareFunc::LEqual: return incoming <= stored;
+    case CompareFunc::Greater: return incoming > stored;
+    case CompareFunc::NotEqual: return incoming != stored;
+    case CompareFunc::GEqual: return incoming >= stored;
+    case CompareFunc::Always: return true;
+    default: return false;
+  }
+}
 
 // A program-written fragment depth (gl_FragDepth) as the depth test and write see it: clamped to the
 // depth range [0, 1], NaN -> 0 (docs/spec-choices.md F11; GL 4.6 §15.2.3, §17.3.4).
