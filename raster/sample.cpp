@@ -536,14 +536,16 @@ void probeLookup(LodQuadLog& log, const TexUnit& u, double dudx, double dvdx, do
   e.look.grad = grad ? 1 : 0;
 }
 
-// The last plan of the calling thread's implicit-LOD lookups, reused while the next quad of the same
-// triangle has the same rho^2 and bias on the same unit: a lookup's lambda and plan are functions of
-// exactly (unit, rho^2, shader bias), and within one triangle of one tile nothing a plan reads can
-// change (the draw state, its units and their textures are fixed while a tile runs). Affine texture
+// The last lambda and plan of the calling thread's implicit-LOD lookups, reused by the next quad of the
+// same triangle on the same unit. A plan is a function of exactly (unit, lambda8), and lambda8 of
+// (unit, rho^2, shader bias); within one triangle of one tile nothing else either reads can change
+// (the draw state, its units and their textures are fixed while a tile runs). Two levels: affine
 // coordinates give every quad of a triangle the same rho^2, so a fill-bound frame computes one lambda
-// and one plan per triangle and tile instead of per quad. The rasterizer opens the cache per triangle
-// (beginPlanCache: a new epoch) and closes it after each tile; other callers of the sampler (tests,
-// tools) never see it. Provenance mode, whose plans depend on the bound being shaded, never opens it.
+// and one plan per triangle and tile; under perspective rho^2 changes from quad to quad, but lambda
+// is 8.8 fixed point and neighbouring quads mostly share it, so only the plan is kept. The rasterizer
+// opens the cache per triangle (beginPlanCache: a new epoch) and closes it after each tile; other
+// callers of the sampler (tests, tools) never see it. Provenance mode, whose plans depend on the
+// bound being shaded, never opens it.
 struct PlanCache {
   bool open = false;
   uint64_t epoch = 0, validEpoch = 0;  // the entry is valid iff validEpoch == epoch
@@ -578,11 +580,12 @@ void sampleQuadImpl(const TexUnit& u, const float s[4], const float t[4], const 
     const double ry = dudy * dudy + dvdy * dvdy;
     const uint64_t rho2Bits = std::bit_cast<uint64_t>(rx > ry ? rx : ry);
     const uint32_t biasBits = std::bit_cast<uint32_t>(bias);
-    if (cache.validEpoch != cache.epoch || cache.unit != &u || cache.rho2Bits != rho2Bits ||
-        cache.biasBits != biasBits) {
-      cache.lambda8 = computeLambda(dudx, dvdx, dudy, dvdy, u.sampler, bias);
-      cache.plan = makePlan(u, cache.lambda8);
-      cache.unit = &u, cache.rho2Bits = rho2Bits, cache.biasBits = biasBits, cache.validEpoch = cache.epoch;
+    const bool valid = cache.validEpoch == cache.epoch && cache.unit == &u;
+    if (!valid || cache.rho2Bits != rho2Bits || cache.biasBits != biasBits) {
+      const int32_t lambda8 = computeLambda(dudx, dvdx, dudy, dvdy, u.sampler, bias);
+      if (!valid || cache.lambda8 != lambda8) cache.plan = makePlan(u, lambda8);
+      cache.unit = &u, cache.rho2Bits = rho2Bits, cache.biasBits = biasBits, cache.lambda8 = lambda8;
+      cache.validEpoch = cache.epoch;
     }
     if (LodQuadLog* log = t_lodLog)
       probeLookup(*log, u, dudx, dvdx, dudy, dvdy, cache.lambda8, cache.plan.levelCount, false);

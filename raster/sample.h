@@ -85,11 +85,11 @@ uint32_t fetchBufferUint(const TexUnit& u, int64_t index);
 int32_t wrapCoord(Wrap w, int64_t i, int32_t size);
 
 namespace detail {
-// The calling thread's plan cache: one lambda and plan reused while rho^2, shader bias and unit repeat
-// from quad to quad. beginPlanCache opens it with a new epoch, so nothing of an earlier triangle is
-// reused; the fast-path rasterizer calls it per triangle of a tile, and endPlanCache after the tile
-// (provenance mode never opens it). Speed only: a lookup gives the same bits with the cache open or
-// closed (tests/raster/test_plan_cache.cpp).
+// The calling thread's plan cache: one lambda reused while rho^2, shader bias and unit repeat from quad
+// to quad, and one plan while lambda and unit repeat. beginPlanCache opens it with a new epoch, so
+// nothing of an earlier triangle is reused; the fast-path rasterizer calls it per triangle of a tile,
+// and endPlanCache after the tile (provenance mode never opens it). Speed only: a lookup gives the
+// same bits with the cache open or closed (tests/raster/test_plan_cache.cpp).
 void beginPlanCache();
 void endPlanCache();
 // The calling thread's SIMD kernels (raster/sample_simd.h), resolved once for a tile's work instead of

@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 
@@ -67,8 +68,15 @@ inline int64_t log2Bits(uint64_t m, int steps) {
 // with the loop itself. Same bits by construction; tests/raster/test_sample.cpp compares the two
 // forms at every threshold, on each side of it, and at random mantissas.
 constexpr int kLambdaSteps = kLodFracBits;  // log2Fixed(rho^2, 7) takes 7 + 1 steps
+// The table is searched in one step, not by bisection: the mantissas [1, 2) are cut into 4096 equal
+// buckets by their top 12 fraction bits, and bucket b records k(b) = log2Bits of its least mantissa.
+// A bucket is 2^-12 wide and consecutive thresholds lie about 2^(1/256) - 1 > 2^-9 apart, so a
+// bucket holds at most one threshold (the constructor checks this) and log2Bits(m) is k(b) or
+// k(b) + 1, decided by one comparison with the next threshold.
+constexpr int kBucketBits = 12;
 struct Log2Thresholds {
-  uint64_t t[1 << kLambdaSteps];
+  uint64_t t[(1 << kLambdaSteps) + 1];  // t[256] = 2.0: above every mantissa, so never passed
+  uint8_t bucket[1 << kBucketBits];
   Log2Thresholds() {
     constexpr uint64_t kOne = uint64_t(1) << 62, kTwo = uint64_t(1) << 63;
     t[0] = kOne;
@@ -84,15 +92,22 @@ struct Log2Thresholds {
       }
       t[k] = lo;
     }
+    t[1 << kLambdaSteps] = kTwo;
+    int k = 0;
+    for (uint64_t b = 0; b < (uint64_t(1) << kBucketBits); ++b) {
+      const uint64_t start = kOne + (b << (62 - kBucketBits)), end = start + (uint64_t(1) << (62 - kBucketBits));
+      while (t[k + 1] <= start) ++k;
+      bucket[b] = uint8_t(k);
+      // At most one threshold inside the bucket; otherwise the one-comparison search would be wrong.
+      if (k + 2 <= (1 << kLambdaSteps) && t[k + 1] < end && t[k + 2] < end) std::abort();
+    }
   }
 };
 
 inline int64_t log2Bits8(uint64_t m) {
   static const Log2Thresholds table;
-  int k = 0;
-  for (int step = 1 << (kLambdaSteps - 1); step > 0; step >>= 1)
-    if (table.t[k + step] <= m) k += step;
-  return k;
+  const int k = table.bucket[(m >> (62 - kBucketBits)) & ((1u << kBucketBits) - 1)];
+  return k + (table.t[k + 1] <= m ? 1 : 0);
 }
 
 }  // namespace

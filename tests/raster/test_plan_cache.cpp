@@ -1,7 +1,8 @@
 // The sampler's plan cache (sample.h, detail::beginPlanCache) is speed only: with it open, every
 // implicit-LOD quad lookup gives the bits it gives with it closed, whether the quads repeat rho^2 (the
-// cache hits), change it, or alternate between units; and a new epoch forgets a unit whose sampler
-// changed in place (the same TexUnit address with other contents, as a reused draw state would be).
+// cache hits), change it a little (lambda repeats: the plan is reused) or a lot, or alternate between
+// units; and a new epoch forgets a unit whose sampler changed in place (the same TexUnit address with
+// other contents, as a reused draw state would be).
 #include <gtest/gtest.h>
 
 #include <array>
@@ -43,7 +44,8 @@ struct QuadIn {
   float s[4], t[4], bias;
 };
 
-// Quads in runs that share derivatives (an affine mapping: the cache's hits) and runs that do not.
+// Quads in runs that share derivatives (an affine mapping: the cache's hits), runs whose derivatives
+// drift slightly (perspective: the same lambda) and runs that do not.
 std::vector<QuadIn> quads() {
   std::mt19937_64 rng(21);
   std::uniform_real_distribution<float> pos(-3.0f, 3.0f), step(-0.05f, 0.05f);
@@ -54,7 +56,9 @@ std::vector<QuadIn> quads() {
     for (int i = 0; i < 20; ++i) {
       QuadIn q{};
       const float s0 = run % 3 == 0 ? 0.25f : pos(rng), t0 = run % 3 == 0 ? 0.5f : pos(rng);
-      const float ddx = run % 2 ? dx : step(rng);
+      // Odd runs share derivatives; every fourth run changes them slightly from quad to quad, as
+      // perspective does, so rho^2 changes while lambda mostly repeats (the cache's second level).
+      const float ddx = run % 4 == 3 ? dx * (1.0f + 1e-4f * float(i)) : run % 2 ? dx : step(rng);
       q.s[0] = s0, q.s[1] = s0 + ddx, q.s[2] = s0 + ex, q.s[3] = s0 + ddx + ex;
       q.t[0] = t0, q.t[1] = t0 + dy, q.t[2] = t0 + ey, q.t[3] = t0 + dy + ey;
       q.bias = bias;

@@ -571,6 +571,9 @@ TEST(Log2Fixed, TheThresholdTableGivesTheLoopsBitsAtEveryThresholdAndBetween) {
     }
     for (uint64_t d = 0; d < 4; ++d) ms.insert(ms.end(), {lo + d, lo - 1 - d});
   }
+  // The edges of the table's 4096 buckets (sample_lod.cpp: a bucket's first mantissa and the last of
+  // the one before).
+  for (uint64_t b = 0; b < 4096; ++b) ms.insert(ms.end(), {kOne + (b << 50), kOne + (b << 50) + 1, kTwo - 1 - (b << 50)});
   std::mt19937_64 rng(8);
   for (int i = 0; i < 2000000; ++i) ms.push_back(kOne | (rng() & (kOne - 1)));
   for (uint64_t m : ms) ASSERT_EQ(log2BitsTable(m), log2BitsLoop(m, 8)) << std::hex << m;
