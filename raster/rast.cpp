@@ -102,8 +102,20 @@ class TriangleRasterizer {
  public:
   TriangleRasterizer(const Scene& scene, const TriSetup& t, RastScratch& s, PipelineStats& stats)
       : scene_(scene), t_(t), ds_(*scene.states[t.drawState]), s_(s), stats_(stats),
-        lateDepth_(ds_.program->writesDepth()), unorm8Quad_(s.unorm8Quad) {
+        lateDepth_(ds_.program->writesDepth()), unorm8Quad_(s.unorm8Quad),
+        // The LOD probe shades quad by quad, and a late depth test needs no early one: both stay per quad.
+        gathered_(s.quadDepths && s.quadVaryings && !lateDepth_ && !scene.lod) {
     beginPlanCache();  // a new triangle: no lambda or plan of another one is reused (sample.h)
+    if (gathered_) {
+      // The scalar code's conversions of the triangle's constants (rast.h), each exact.
+      for (int i = 0; i < 3; ++i) {
+        plane_.z[i] = double(t.z[i]);
+        plane_.invW[i] = t.invW[i];
+        for (int k = 0; k < ds_.varyings; ++k) plane_.var[i][k] = double(t.var[i][k]);
+      }
+      plane_.area2 = double(t.area2);
+      plane_.varyings = ds_.varyings;
+    }
     const TargetView& tv = scene.target;
     depth_ = Plane::of(tv.depth, tv.level, t.layer);
     // Only the attachments the program writes are ever addressed (flush() loops to colorOutputs).
@@ -114,6 +126,9 @@ class TriangleRasterizer {
     const int32_t x0 = std::max(t_.minX, tile.x0), x1 = std::min(t_.maxX, tile.x1);
     const int32_t y0 = std::max(t_.minY, tile.y0), y1 = std::min(t_.maxY, tile.y1);
     if (x0 > x1 || y0 > y1) return;
+    xLast_ = tile.x1, yLast_ = tile.y1;
+    for (int i = 0; i < 3; ++i) edges_.dx[i] = t_.a[i] * kStep, edges_.dy[i] = t_.b[i] * kStep, edges_.bias[i] = t_.bias[i];
+    edges_.setSteps();
     for (int32_t by = y0 & ~(kBlockSize - 1); by <= y1; by += kBlockSize)
       for (int32_t bx = x0 & ~(kBlockSize - 1); bx <= x1; bx += kBlockSize) block(bx, by, x0, y0, x1, y1);
     flush();
@@ -161,31 +176,106 @@ class TriangleRasterizer {
     }
     const bool inside = bx >= x0 && by >= y0 && bx + kBlockSize - 1 <= x1 && by + kBlockSize - 1 <= y1;
     // Edge values step by exact integer increments: one pixel right adds a * kStep, one up b * kStep.
-    int64_t dx[3], dy[3], eRow[3];
-    for (int i = 0; i < 3; ++i) dx[i] = t_.a[i] * kStep, dy[i] = t_.b[i] * kStep, eRow[i] = e0[i];
-    for (int32_t qy = by; qy < by + kBlockSize; qy += 2) {
-      int64_t eq[3] = {eRow[0], eRow[1], eRow[2]};
-      for (int i = 0; i < 3; ++i) eRow[i] += 2 * dy[i];
-      if (qy + 1 < y0 || qy > y1) continue;
-      for (int32_t qx = bx; qx < bx + kBlockSize; qx += 2) {
+    BlockEdges& be = edges_;  // steps and bias set per triangle (run)
+    for (int i = 0; i < 3; ++i) be.e0[i] = e0[i];
+    // The covered pixels (raster/coverage_simd.h: bit 8 y + x), within the triangle's box and the tile.
+    static_assert(kBlockSize == 8, "a block's coverage is one 64-bit mask");
+    // Rows outside the box are not tested (a small triangle's block has few rows to test).
+    be.rowBegin = std::max(y0 - by, 0), be.rowEnd = std::min(y1 - by + 1, kBlockSize);
+    uint64_t mask = full ? ~uint64_t(0) : s_.blockCoverage(be);
+    if (!inside) mask &= boxMask(bx, by, x0, y0, x1, y1);
+    for (int ry = 0; mask && ry < kBlockSize; ry += 2)
+      for (int rx = 0; rx < kBlockSize; rx += 2) {
+        // Quad pixel p = x + 2 y is bit 8 (ry + y) + rx + x of the mask.
+        const uint64_t bits = mask >> (8 * ry + rx);
+        const uint8_t cov = uint8_t((bits & 3) | (bits >> 8 & 3) << 2);
+        if (!cov) continue;
         int64_t e[4][3];
         for (int i = 0; i < 3; ++i) {
-          e[0][i] = eq[i], e[1][i] = eq[i] + dx[i], e[2][i] = eq[i] + dy[i], e[3][i] = eq[i] + dx[i] + dy[i];
-          eq[i] += 2 * dx[i];
+          const int64_t eq = be.e0[i] + rx * be.dx[i] + ry * be.dy[i];
+          e[0][i] = eq, e[1][i] = eq + be.dx[i], e[2][i] = eq + be.dy[i], e[3][i] = eq + be.dx[i] + be.dy[i];
         }
-        if (qx + 1 < x0 || qx > x1) continue;
-        uint8_t cov = 0xf;
-        if (!full)
-          for (int p = 0; p < 4; ++p)
-            if (e[p][0] < t_.bias[0] || e[p][1] < t_.bias[1] || e[p][2] < t_.bias[2]) cov &= uint8_t(~(1u << p));
-        if (!inside)
-          for (int p = 0; p < 4; ++p) {
-            const int32_t px = qx + (p & 1), py = qy + (p >> 1);
-            if (px < x0 || px > x1 || py < y0 || py > y1) cov &= uint8_t(~(1u << p));
-          }
-        if (cov) quad(qx, qy, cov, e);
+        if (gathered_) {
+          gather(bx + rx, by + ry, cov, e);
+        } else {
+          quad(bx + rx, by + ry, cov, e);
+        }
+      }
+    if (gathered_) runGathered();
+  }
+
+  // The pixels of the block at (bx, by) inside [x0, x1] x [y0, y1], as a coverage mask.
+  static uint64_t boxMask(int32_t bx, int32_t by, int32_t x0, int32_t y0, int32_t x1, int32_t y1) {
+    const int32_t cx0 = std::max(x0 - bx, 0), cx1 = std::min(x1 - bx, kBlockSize - 1);
+    const int32_t cy0 = std::max(y0 - by, 0), cy1 = std::min(y1 - by, kBlockSize - 1);
+    if (cx0 > cx1 || cy0 > cy1) return 0;
+    const uint64_t row = ((uint64_t(2) << cx1) - 1) & ~((uint64_t(1) << cx0) - 1);  // bits cx0..cx1
+    uint64_t m = 0;
+    for (int32_t y = cy0; y <= cy1; ++y) m |= row << (8 * y);
+    return m;
+  }
+
+  // The early depth test of a quad's four pixels as a mask (bit p: pixel p passes), without a branch
+  // per pixel. A quad may reach past the last column or row of the target (odd sizes); those pixels are
+  // never covered, and their stored depth is read at the last valid one instead, then masked away.
+  uint8_t depthPassMask(const Quad& q) const {
+    const int32_t xr = std::min(q.x + 1, xLast_), yu = std::min(q.y + 1, yLast_);
+    const float stored[4] = {depth_.depth(q.x, q.y), depth_.depth(xr, q.y), depth_.depth(q.x, yu), depth_.depth(xr, yu)};
+    uint32_t pass = 0;
+    for (int p = 0; p < 4; ++p) pass |= uint32_t(depthPasses(ds_.depth.func, q.z[p], stored[p])) << p;
+    return uint8_t(pass);
+  }
+
+  // Appends a covered quad of the block to the kernels' input (RastScratch::px, pixel 4 j + p).
+  void gather(int32_t qx, int32_t qy, uint8_t cov, const int64_t (&e)[4][3]) {
+    const size_t j = pending_++;
+    s_.pending[j] = {qx, qy, cov};
+    for (int i = 0; i < 3; ++i)
+      for (int p = 0; p < 4; ++p) s_.px.e[i][4 * j + size_t(p)] = e[p][i];
+  }
+
+  // The block's gathered quads, in the order quad() would have taken them, with the same results:
+  // depths of all their pixels in one kernel call, the early depth test per pixel, then the varyings
+  // of the quads that kept a pixel in a second call. A triangle covers a pixel once, so testing a
+  // block's quads before any of them is written sees the depths quad() would see.
+  void runGathered() {
+    const size_t np = pending_;
+    if (!np) return;
+    pending_ = 0;
+    // The block's quads go into one batch (batches are only a grouping of program calls).
+    if (count_ + np > RastScratch::kBatch) flush();
+    QuadPixels& px = s_.px;
+    s_.quadDepths(px, 4 * np, plane_, s_.z);
+    const bool depthTest = ds_.depth.test && scene_.target.depth;
+    size_t kept = 0;
+    for (size_t j = 0; j < np; ++j) {
+      const size_t n = count_ + kept;
+      Quad& q = s_.quads[n];
+      const RastScratch::PendingQuad& pq = s_.pending[j];
+      q.x = pq.x, q.y = pq.y, q.coverage = pq.coverage;
+      std::memcpy(q.z, s_.z + 4 * j, sizeof q.z);
+      uint8_t live = pq.coverage;
+      if (depthTest) {
+        live &= depthPassMask(q);
+        stats_.fragments_depth_failed += quadPixels(uint32_t(pq.coverage & ~live));
+        if (!live) continue;
+      }
+      s_.live[n] = live;
+      s_.outs[n].discard = 0;
+      if (kept != j)  // close the gap left by quads that failed depth
+        for (int i = 0; i < 3; ++i) std::memcpy(px.e[i] + 4 * kept, px.e[i] + 4 * j, 4 * sizeof(int64_t));
+      ++kept;
+    }
+    if (kept) {
+      s_.quadVaryings(px, 4 * kept, plane_, s_.var);
+      for (size_t l = 0; l < kept; ++l) {
+        Quad& q = s_.quads[count_ + l];
+        for (int p = 0; p < 4; ++p)
+          for (int k = 0; k < ds_.varyings; ++k) q.var[p][k] = s_.var[size_t(k) * QuadPixels::kMax + 4 * l + size_t(p)];
       }
     }
+    count_ += kept;
+    if (count_ == RastScratch::kBatch) flush();
   }
 
   void quad(int32_t qx, int32_t qy, uint8_t cov, const int64_t (&e)[4][3]) {
@@ -305,6 +395,11 @@ class TriangleRasterizer {
   PipelineStats& stats_;
   const bool lateDepth_;  // the program writes gl_FragDepth: the depth test runs after shading (F11)
   const Unorm8QuadFn unorm8Quad_;  // the running SIMD target's unorm8 conversion (RastScratch)
+  const bool gathered_;  // blocks' quads go through the interpolation kernels (runGathered)
+  InterpolationPlane plane_{};
+  size_t pending_ = 0;  // quads gathered from the block being walked
+  int32_t xLast_ = 0, yLast_ = 0;  // the tile's last column and row (inside the target)
+  BlockEdges edges_;  // the coverage kernel's input (raster/coverage_simd.h)
   Plane depth_;
   Plane color_[kMaxColorAttachments];
   size_t count_ = 0;
@@ -321,11 +416,23 @@ void rasterizeTile(const Scene& scene, size_t tileIndex, RastScratch& scratch, P
   ++stats.tiles_rasterized;
   // The SIMD kernels once per tile (a dispatch calls into libhwy; the target cannot change mid-frame).
   scratch.unorm8Quad = unorm8QuadKernel();
+  scratch.quadDepths = quadDepthsKernel();
+  scratch.quadVaryings = quadVaryingsKernel();
+  scratch.blockCoverage = blockCoverageKernel();
   bindSampleKernels();
   const int32_t tx = int32_t(tileIndex % size_t(scene.tilesX)), ty = int32_t(tileIndex / size_t(scene.tilesX));
   const TileRect tile{tx * kTileSize, ty * kTileSize, std::min((tx + 1) * kTileSize, scene.target.width) - 1,
                       std::min((ty + 1) * kTileSize, scene.target.height) - 1};
-  for (const TileCmd& cmd : bin) {
+  for (size_t ci = 0; ci < bin.size(); ++ci) {
+    const TileCmd& cmd = bin[ci];
+    // The triangle after the next one is fetched while this one runs: a bin visits the triangle arena
+    // in submission order with gaps, so each TriSetup (several cache lines) would otherwise miss the cache
+    // on its first read. The lines read by every triangle: edges, bounds, 1/w, depths, the first
+    // varyings and drawState.
+    if (ci + 2 < bin.size() && bin[ci + 2].op == TileOp::Triangle) {
+      const char* next = reinterpret_cast<const char*>(&scene.tri(bin[ci + 2]));
+      for (size_t line = 0; line < sizeof(TriSetup); line += 64) __builtin_prefetch(next + line);
+    }
     switch (cmd.op) {
       case TileOp::Triangle: {
         if (scene.provenance) {

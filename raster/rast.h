@@ -1,19 +1,24 @@
 // Per-tile execution (the "rast" half of the backend, like llvmpipe's lp_rast.c).
 //
 // Implements: running one tile's bin in submission order: clears, and triangles walked as 8x8
-// blocks (trivial reject / full-block fast path without per-pixel edge tests) of 2x2 quads with
-// exact int64 edge tests at pixel centres, perspective-correct interpolation in double from the
-// exact edge values (helper pixels extrapolated the same way), early depth test (equivalent to the
-// late test for programs that write no depth; a program that writes gl_FragDepth gets the late test
-// on its value, spec-choices F11), fragment shading in batches, then fragops.h per pixel.
+// blocks (trivial reject / full-block fast path without per-pixel edge tests; otherwise one coverage
+// mask of exact int64 edge tests at pixel centres, coverage_simd.h) of 2x2 quads,
+// perspective-correct interpolation in double from the exact edge values (helper pixels extrapolated
+// the same way; a block's quads at once through interpolate_simd.h, or per quad below under the
+// "reference" SIMD target), early depth test (equivalent to the late test for programs that write
+// no depth; a program that writes gl_FragDepth gets the late test on its value, spec-choices F11),
+// fragment shading in batches, then fragops.h per pixel.
 // A tile owns its pixels, so tiles run in parallel and the result is independent of thread count.
 // Does not implement: setup or binning (setup.h).
 #pragma once
 
 #include <cstring>
+#include <limits>
 #include <vector>
 
+#include "raster/coverage_simd.h"
 #include "raster/fragops_simd.h"
+#include "raster/interpolate_simd.h"
 #include "raster/pipeline.h"
 #include "raster/stage_times.h"
 
@@ -29,6 +34,22 @@ struct RastScratch {
   StageTicks ticks;   // Scene::timeStages: this thread's time per stage (stage_times.h)
   // The colour write's unorm8 kernel (raster/fragops_simd.h), resolved per tile by rasterizeTile.
   Unorm8QuadFn unorm8Quad = nullptr;
+  // The interpolation kernels (raster/interpolate_simd.h), resolved per tile; nullptr under
+  // "reference", where every quad takes interpolateQuadDepth / interpolateQuadVaryings below.
+  QuadDepthsFn quadDepths = nullptr;
+  QuadVaryingsFn quadVaryings = nullptr;
+  // The block coverage kernel (raster/coverage_simd.h; the scalar reference under "reference").
+  BlockCoverageFn blockCoverage = nullptr;
+  // An 8x8 block's covered quads, gathered for the kernels: position and coverage, edge values in
+  // `px`, and the kernels' outputs.
+  struct PendingQuad {
+    int32_t x, y;
+    uint8_t coverage;
+  };
+  PendingQuad pending[QuadPixels::kMax / 4] = {};
+  QuadPixels px;
+  alignas(64) float z[QuadPixels::kMax] = {};
+  alignas(64) float var[kMaxVaryings * QuadPixels::kMax] = {};
 };
 
 void rasterizeTile(const Scene& scene, size_t tileIndex, RastScratch& scratch, PipelineStats& stats);
@@ -48,10 +69,18 @@ void rasterizeTriangleProvenance(const Scene& scene, const TriSetup& t, const Ti
 // the per-pixel form (interpolatePixel, used by the provenance path) and the quad form of the fast
 // path both call them, so their values are the same bytes by construction (helper pixels
 // extrapolate the same way).
-inline float pixelDepth(const TriSetup& t, const int64_t (&e)[3]) {
+//
+// A NaN result is the canonical quiet NaN (docs/spec-choices.md R5): which NaN an IEEE operation
+// returns for NaN operands depends on their order, and compilers and SIMD kernels may swap the operands
+// of a commutative operation, so NaN bits would otherwise depend on the build and the SIMD target.
+inline float canonicalNaN(float v) { return v != v ? std::numeric_limits<float>::quiet_NaN() : v; }
+
+inline double pixelDepthWide(const TriSetup& t, const int64_t (&e)[3]) {
   const double ed[3] = {double(e[0]), double(e[1]), double(e[2])};
-  return float((ed[0] * t.z[0] + ed[1] * t.z[1] + ed[2] * t.z[2]) / double(t.area2));
+  return (ed[0] * t.z[0] + ed[1] * t.z[1] + ed[2] * t.z[2]) / double(t.area2);
 }
+
+inline float pixelDepth(const TriSetup& t, const int64_t (&e)[3]) { return canonicalNaN(float(pixelDepthWide(t, e))); }
 
 inline void pixelBarycentrics(const TriSetup& t, const int64_t (&e)[3], double (&b)[3]) {
   const double w0 = double(e[0]) * t.invW[0], w1 = double(e[1]) * t.invW[1], w2 = double(e[2]) * t.invW[2];
@@ -59,8 +88,12 @@ inline void pixelBarycentrics(const TriSetup& t, const int64_t (&e)[3], double (
   b[0] = w0 / sum, b[1] = w1 / sum, b[2] = w2 / sum;
 }
 
+inline double pixelVaryingWide(const TriSetup& t, const double (&b)[3], int k) {
+  return b[0] * t.var[0][k] + b[1] * t.var[1][k] + b[2] * t.var[2][k];
+}
+
 inline float pixelVarying(const TriSetup& t, const double (&b)[3], int k) {
-  return float(b[0] * t.var[0][k] + b[1] * t.var[1][k] + b[2] * t.var[2][k]);
+  return canonicalNaN(float(pixelVaryingWide(t, b, k)));
 }
 
 inline float interpolatePixel(const TriSetup& t, int varyings, const int64_t (&e)[3], float* var) {

@@ -1,4 +1,5 @@
-// Which SIMD target the oracle's Highway kernels run on (raster/sample_simd.h, raster/interpolate_simd.h).
+// Which SIMD target the oracle's Highway kernels run on (raster/sample_simd.h, fragops_simd.h,
+// interpolate_simd.h, coverage_simd.h).
 //
 // Implements: the list of targets this build compiled (every x86 target Highway can attain: AVX-512
 // "avx3", "avx2", "sse4", "ssse3" and the one-lane "scalar"; HWY_COMPILE_ALL_ATTAINABLE is set for the
