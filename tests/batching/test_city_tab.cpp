@@ -12,20 +12,14 @@
 #include "batching/tab_stats.h"
 #include "model/city_gen.h"
 #include "model/model.h"
+#include "tests/batching/scratch_dir.h"
 
 namespace tessera::batching {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("tessera-tab-city-" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(path); }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
+using testing::TempDir;
 
 TabScene cityInput(model::CityPreset preset, uint32_t buildings, uint32_t textureSize, const fs::path& dir) {
   model::CityOptions o;
@@ -40,7 +34,7 @@ TabScene cityInput(model::CityPreset preset, uint32_t buildings, uint32_t textur
 TEST(TabCity, BerlinWithTableOnesTextureCountsBatchesEveryFacadeIntoFullArrays) {
   TempDir tmp;
   for (uint32_t n : {14u, 204u, 269u, 864u}) {
-    TabScene s = cityInput(model::CityPreset::Berlin, n, 8, tmp.path);
+    TabScene s = cityInput(model::CityPreset::Berlin, n, 8, tmp.dir);
     runAlgorithm1(s, TabParams{});
     const nlohmann::json t = tableOneJson(s);
     EXPECT_EQ(t["textures"], n) << n;
@@ -55,7 +49,7 @@ TEST(TabCity, BerlinWithTableOnesTextureCountsBatchesEveryFacadeIntoFullArrays) 
 
 TEST(TabCity, ChemnitzKeepsBlendMeshesUnbatchedAndMaskMeshesBatched) {
   TempDir tmp;
-  TabScene s = cityInput(model::CityPreset::Chemnitz, 60, 64, tmp.path);  // sizes scale by 64 / 512: still many
+  TabScene s = cityInput(model::CityPreset::Chemnitz, 60, 64, tmp.dir);  // sizes scale by 64 / 512: still many
   runAlgorithm1(s, TabParams{});
   size_t blend = 0, mask = 0;
   for (const TabMesh& m : s.meshes) {
