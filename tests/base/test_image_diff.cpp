@@ -10,7 +10,7 @@
 #include "base/error.h"
 #include "base/image_diff.h"
 
-using namespace tessera;
+namespace tessera {
 
 namespace {
 
@@ -188,3 +188,5 @@ TEST(ImageDiff, PsnrOfZeroMseIsInfiniteAndOtherwiseFollowsTheFormula) {
   EXPECT_DOUBLE_EQ(psnrFromMse(1.0, 10.0), 20.0);  // 10 log10(100)
   EXPECT_DOUBLE_EQ(psnrFromMse(0.01, 1.0), 20.0);  // 10 log10(100)
 }
+
+}  // namespace tessera

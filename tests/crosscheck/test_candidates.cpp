@@ -10,35 +10,29 @@
 
 #include "raster/cpu_backend.h"
 #include "raster/image_io.h"
+#include "tests/crosscheck/find_pixels.h"
+#include "tests/crosscheck/provenance_render.h"
 #include "tools/scenes/scene_common.h"
 #include "tools/scenes/scenes.h"
-#include "tests/crosscheck/provenance_render.h"
 #include "verify/judge.h"
 
-using namespace tessera;
+namespace tessera {
 
 namespace {
-using Rendered = ProvenanceRender;
-Rendered render(const CommandList& list, uint32_t image = 0) { return renderWithProvenance(list, image); }
-Rendered renderScene(const char* name, uint32_t image = 0) {
+ProvenanceRender renderScene(const char* name, uint32_t image = 0) {
   const scenes::SceneInfo* s = scenes::find(name);
-  return render(scenes::build(s->name, s->width, s->height), image);
+  return renderWithProvenance(scenes::build(s->name, s->width, s->height), image);
 }
 
-verify::Judgement judgeOf(const Rendered& r, const std::vector<uint8_t>& other) {
+verify::Judgement judgeOf(const ProvenanceRender& r, const std::vector<uint8_t>& other) {
   return verify::judge(*r.tex, r.img.level, r.img.layer, other);
 }
 
 // Provenance storage index of top-down pixel i (rows are stored bottom first).
-size_t storeIndex(const Rendered& r, size_t i) { return (r.h - 1 - i / r.w) * r.w + i % r.w; }
-uint16_t classesOf(const Rendered& r, size_t i) { return r.tex->prov->classes[r.img.level][storeIndex(r, i)]; }
+size_t storeIndex(const ProvenanceRender& r, size_t i) { return (r.h - 1 - i / r.w) * r.w + i % r.w; }
+uint16_t classesOf(const ProvenanceRender& r, size_t i) { return r.tex->prov->classes[r.img.level][storeIndex(r, i)]; }
 
-std::vector<size_t> findPixels(size_t count, size_t n, const std::function<bool(size_t)>& pred) {
-  std::vector<size_t> found;
-  for (size_t i = 0; i < count && found.size() < n; ++i)
-    if (pred(i)) found.push_back(i);
-  return found;
-}
+using tessera::testing::findPixels;
 
 // One white triangle (flat_color) over black, 64 x 64. Its vertices sit on pixel centres and its
 // edges run along (2, 1), (-5, 3) and (-3, -29), so they pass exactly through 28, 10 and 2 centres.
@@ -91,7 +85,7 @@ CommandList twoLevelFrame() {
 }  // namespace
 
 TEST(Candidates, ADifferingPixelWithoutAClassIsUnexplainedEvenInsideAWideInterval) {
-  Rendered r = renderScene("depth");
+  ProvenanceRender r = renderScene("depth");
   const auto u = findPixels(
       r.w * r.h, 1, [&](size_t i) { return classesOf(r, i) == 0 && r.pixels[i * 4] > 0 && r.pixels[i * 4] < 255; });
   ASSERT_EQ(u.size(), 1u) << "the depth scene has unclassed pixels with a red byte inside 0..255";
@@ -110,7 +104,7 @@ TEST(Candidates, ADifferingPixelWithoutAClassIsUnexplainedEvenInsideAWideInterva
 }
 
 TEST(Candidates, AnEdgePixelOfAWhiteTriangleOnBlackAcceptsBlackOrWhiteButNoGrey) {
-  const Rendered r = render(whiteTriangle());
+  const ProvenanceRender r = renderWithProvenance(whiteTriangle());
   const auto edge = findPixels(r.w * r.h, 64, [&](size_t i) { return (classesOf(r, i) & kEdgeTie) != 0; });
   ASSERT_GE(edge.size(), 8u) << "the triangle's edges must pass near pixel centres";
   for (size_t i : edge) {
@@ -128,7 +122,7 @@ TEST(Candidates, AnEdgePixelOfAWhiteTriangleOnBlackAcceptsBlackOrWhiteButNoGrey)
 // fill_fan draws fan A (edges through pixel centres) with additive blending of 64 per hit over black:
 // inside the fan, a centre on an edge between two of its triangles must read exactly 64.
 TEST(Candidates, ASharedEdgeAcceptsNeitherAGapNorADoubleHit) {
-  const Rendered r = renderScene("fill_fan");  // 128 x 128: fan A centred at pixel (32, 64), radius 29
+  const ProvenanceRender r = renderScene("fill_fan");  // 128 x 128: fan A centred at pixel (32, 64), radius 29
   size_t checked = 0;
   for (size_t i = 0; i < r.w * r.h; ++i) {
     if (!(classesOf(r, i) & kEdgeTie)) continue;
@@ -148,7 +142,7 @@ TEST(Candidates, ASharedEdgeAcceptsNeitherAGapNorADoubleHit) {
 }
 
 TEST(Candidates, AnIdImageAcceptsOnlyTheCandidateIdsNeverTheIdsBetween) {
-  const Rendered r = renderScene("city_ids");
+  const ProvenanceRender r = renderScene("city_ids");
   ASSERT_EQ(r.tex->desc.format, Format::R32UI);
   auto word = [&](const std::vector<uint8_t>& v, size_t i) {
     uint32_t x;
@@ -186,7 +180,7 @@ TEST(Candidates, AnIdImageAcceptsOnlyTheCandidateIdsNeverTheIdsBetween) {
 }
 
 TEST(Candidates, TheReportCountsClassesWidthsAndCandidateSetSizes) {
-  const Rendered r = render(whiteTriangle());
+  const ProvenanceRender r = renderWithProvenance(whiteTriangle());
   const verify::Judgement j = judgeOf(r, r.pixels);
   const nlohmann::json js = verify::toJson(j);
   const nlohmann::json& edge = js["per_class"]["EDGE_TIE"];
@@ -203,7 +197,7 @@ TEST(Candidates, TheReportCountsClassesWidthsAndCandidateSetSizes) {
 }
 
 TEST(Candidates, APixelBetweenTwoLegalLodLevelsAcceptsEitherLevelButNoValueBetweenThem) {
-  const Rendered r = render(twoLevelFrame());
+  const ProvenanceRender r = renderWithProvenance(twoLevelFrame());
   for (size_t i = 0; i < r.w * r.h; ++i) {
     ASSERT_EQ(r.pixels[i * 4], 0) << "the oracle takes level 0 (black): pixel " << i;
     ASSERT_NE(classesOf(r, i) & kLodNearSwitch, 0) << "pixel " << i;
@@ -225,7 +219,7 @@ TEST(Candidates, APixelWhoseLookupsFellBackToTheirHullIsCountedInTheReport) {
   // rast_provenance.cpp flags kLookupFallback where a fragment had two lookups with several candidates
   // (or a lookup with more than kMaxLookupCandidates); the report counts such pixels per image and per
   // class, as it counts kFallback.
-  Rendered r = render(twoLevelFrame());
+  ProvenanceRender r = renderWithProvenance(twoLevelFrame());
   r.tex->prov->flags[r.img.level][storeIndex(r, 5)] |= kLookupFallback;
   r.tex->prov->flags[r.img.level][storeIndex(r, 9)] |= kLookupFallback;
   const nlohmann::json js = verify::toJson(judgeOf(r, r.pixels));
@@ -233,3 +227,5 @@ TEST(Candidates, APixelWhoseLookupsFellBackToTheirHullIsCountedInTheReport) {
   EXPECT_EQ(js["per_class"]["LOD_NEAR_SWITCH"]["lookup_fallbacks"].get<uint64_t>(), 2u);
   EXPECT_EQ(js["candidate_fallbacks"].get<uint64_t>(), 0u);
 }
+
+}  // namespace tessera

@@ -7,7 +7,7 @@
 #include "tools/scenes/scenes.h"
 #include "verify/crosscheck.h"
 
-using namespace tessera;
+namespace tessera {
 
 namespace {
 gl::GlBackend& glBackend() {
@@ -83,3 +83,5 @@ TEST(Crosscheck, BisectionNamesTheFirstDrawWhoseOutputDiverges) {
   EXPECT_EQ(r.json["first_diverging_draw"]["draw_index"].get<size_t>(), badDraw);
   EXPECT_EQ(r.json["first_diverging_draw"]["state"]["program"].get<std::string>(), "textured");
 }
+
+}  // namespace tessera

@@ -12,23 +12,20 @@
 #include "tests/crosscheck/provenance_render.h"
 #include "verify/judge.h"
 
-using namespace tessera;
+namespace tessera {
 
 namespace {
 
 constexpr int kSize = 32;
 
-using Rendered = ProvenanceRender;
-Rendered render(const CommandList& list, uint32_t image = 0) { return renderWithProvenance(list, image); }
-
 // Top-down byte offset of GL pixel (x, y), and its classes (stored bottom row first).
 size_t at(int x, int y) { return (size_t(kSize - 1 - y) * kSize + size_t(x)) * 4; }
-uint16_t classesAt(const Rendered& r, int x, int y) {
+uint16_t classesAt(const ProvenanceRender& r, int x, int y) {
   return r.tex->prov->classes[r.img.level][size_t(y) * kSize + size_t(x)];
 }
 
 // Whether the judge accepts the oracle's image with pixel (x, y) set to grey level v in r, g, b.
-bool accepts(const Rendered& r, int x, int y, uint8_t v) {
+bool accepts(const ProvenanceRender& r, int x, int y, uint8_t v) {
   auto other = r.pixels;
   for (int c = 0; c < 3; ++c) other[at(x, y) + c] = v;
   return verify::judge(*r.tex, r.img.level, r.img.layer, other).unexplained == 0;
@@ -76,7 +73,7 @@ constexpr uint8_t kDark = 64, kLight = 191;  // 0.25 and 0.75 as unorm8 (63.75, 
 }  // namespace
 
 TEST(DepthCandidates, ARedrawOfTheSameGeometryUnderLessMustLoseEveryTie) {
-  const Rendered r = render(redraw(CompareFunc::Less, 0.0f, false));
+  const ProvenanceRender r = renderWithProvenance(redraw(CompareFunc::Less, 0.0f, false));
   for (int y = 6; y < 26; y += 3)
     for (int x = 6; x < 26; x += 3) {
       // On the quad's diagonal the two triangles' chains (same colour, other writers) are merged,
@@ -89,7 +86,7 @@ TEST(DepthCandidates, ARedrawOfTheSameGeometryUnderLessMustLoseEveryTie) {
 }
 
 TEST(DepthCandidates, ARedrawOfTheSameGeometryUnderLequalMustWinEveryTie) {
-  const Rendered r = render(redraw(CompareFunc::LEqual, 0.0f, false));
+  const ProvenanceRender r = renderWithProvenance(redraw(CompareFunc::LEqual, 0.0f, false));
   for (int y = 6; y < 26; y += 3)
     for (int x = 6; x < 26; x += 3) {
       if (x == y) continue;  // the diagonal, as above
@@ -102,7 +99,7 @@ TEST(DepthCandidates, ARedrawOfTheSameGeometryUnderLequalMustWinEveryTie) {
 TEST(DepthCandidates, OtherGeometryAtANearTieStillAcceptsEitherOutcome) {
   // The same plane split along the other diagonal: other primitives, so GL need not give the same
   // depth bits, and the depths agree only within the precision GL allows.
-  const Rendered r = render(redraw(CompareFunc::Less, 0.0f, true));
+  const ProvenanceRender r = renderWithProvenance(redraw(CompareFunc::Less, 0.0f, true));
   int forked = 0;
   for (int y = 6; y < 26; y += 3)
     for (int x = 6; x < 26; x += 3) {
@@ -136,7 +133,7 @@ TEST(DepthCandidates, AFragmentBehindAnEdgeTieMayShowWhereTheEdgeGoesTheOtherWay
   ds.test = true;
   cl.setDepthState(ds);
   cl.drawIndexed(0, n);
-  const Rendered r = render(cl);
+  const ProvenanceRender r = renderWithProvenance(cl);
   int checked = 0;
   for (int y = 6; y < 26; ++y) {
     ASSERT_EQ(r.pixels[at(16, y)], 0) << "the oracle covers centres on its left edge (fill rule): y " << y;
@@ -149,3 +146,5 @@ TEST(DepthCandidates, AFragmentBehindAnEdgeTieMayShowWhereTheEdgeGoesTheOtherWay
   }
   EXPECT_EQ(checked, 20);
 }
+
+}  // namespace tessera

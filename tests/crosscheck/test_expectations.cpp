@@ -15,8 +15,7 @@
 #include "verify/crosscheck.h"
 #include "verify/expectations.h"
 
-using namespace tessera;
-using namespace tessera::verify;
+namespace tessera::verify {
 
 namespace {
 
@@ -199,3 +198,5 @@ TEST(Expectations, APinnedDeviationIsCountedAndPassesOnlyInsideItsDraw) {
   EXPECT_EQ(over.json["unexplained"].get<uint64_t>(), 58u * 58u);
   EXPECT_FALSE(over.json["expectations"]["matched"][0]["covered"].get<bool>());
 }
+
+}  // namespace tessera::verify

@@ -11,21 +11,22 @@
 #include "base/error.h"
 #include "raster/cpu_backend.h"
 #include "raster/image_io.h"
+#include "tests/crosscheck/find_pixels.h"
 #include "tools/scenes/scenes.h"
 #include "verify/judge.h"
 
-using namespace tessera;
+namespace tessera {
 
 namespace {
-struct Rendered {
+struct BoundedRender {
   std::unique_ptr<CpuBackend> b = std::make_unique<CpuBackend>(RenderOptions{0, true});
   const TextureData* tex = nullptr;
   PresentedImage img;
   std::vector<uint8_t> pixels, lo, hi;  // top-down, imagePixels() layout
   size_t count = 0;                     // pixels
 };
-Rendered render(const char* scene) {
-  Rendered r;
+BoundedRender renderWithBounds(const char* scene) {
+  BoundedRender r;
   const scenes::SceneInfo* s = scenes::find(scene);
   r.b->execute(scenes::build(s->name, s->width, s->height), scene);
   r.img = r.b->presented().at(0);
@@ -37,22 +38,15 @@ Rendered render(const char* scene) {
   return r;
 }
 
-verify::Judgement judgeOf(const Rendered& r, const std::vector<uint8_t>& other) {
+verify::Judgement judgeImage(const BoundedRender& r, const std::vector<uint8_t>& other) {
   return verify::judge(*r.tex, r.img.level, r.img.layer, other);
 }
 
-// The first `n` distinct pixels (in top-down scan order, from `from`) that satisfy `pred`; fewer if the
-// image has fewer. Every search in this file is bounded by the image size and checked by the caller.
-std::vector<size_t> findPixels(size_t count, size_t n, const std::function<bool(size_t)>& pred, size_t from = 0) {
-  std::vector<size_t> found;
-  for (size_t i = from; i < count && found.size() < n; ++i)
-    if (pred(i)) found.push_back(i);
-  return found;
-}
+using tessera::testing::findPixels;
 
 // The classes of pixel i (top-down index) read straight from the provenance storage, which keeps rows
 // bottom first: an independent path from the judge's classMap.
-uint16_t storedClasses(const Rendered& r, size_t i) {
+uint16_t storedClasses(const BoundedRender& r, size_t i) {
   const size_t w = r.tex->desc.width, h = r.tex->desc.height;
   const size_t x = i % w, yTop = i / w;
   return r.tex->prov->classes[r.img.level][(size_t(r.img.layer) * h + (h - 1 - yTop)) * w + x];
@@ -60,8 +54,8 @@ uint16_t storedClasses(const Rendered& r, size_t i) {
 }  // namespace
 
 TEST(Judge, IdenticalImagesAreAllExact) {
-  const Rendered r = render("depth");
-  const verify::Judgement j = judgeOf(r, r.pixels);
+  const BoundedRender r = renderWithBounds("depth");
+  const verify::Judgement j = judgeImage(r, r.pixels);
   EXPECT_EQ(j.pixels, uint64_t(192 * 192));
   EXPECT_EQ(j.exact, j.pixels);
   EXPECT_EQ(j.explained, 0u);
@@ -82,8 +76,8 @@ TEST(Judge, IdenticalImagesAreAllExact) {
 }
 
 TEST(Judge, AOneLsbChangeOnAnUnclassedPixelIsUnexplainedInEitherDirection) {
-  const Rendered r = render("depth");
-  const verify::Judgement ref = judgeOf(r, r.pixels);
+  const BoundedRender r = renderWithBounds("depth");
+  const verify::Judgement ref = judgeImage(r, r.pixels);
   // An unclassed pixel whose red byte can move by one both ways.
   const auto found = findPixels(
       r.count, 1, [&](size_t i) { return ref.classMap[i] == 0 && r.pixels[i * 4] > 0 && r.pixels[i * 4] < 255; });
@@ -94,7 +88,7 @@ TEST(Judge, AOneLsbChangeOnAnUnclassedPixelIsUnexplainedInEitherDirection) {
   for (int delta : {+1, -1}) {
     auto other = r.pixels;
     other[i * 4] = uint8_t(other[i * 4] + delta);
-    const verify::Judgement j = judgeOf(r, other);
+    const verify::Judgement j = judgeImage(r, other);
     EXPECT_EQ(j.unexplained, 1u) << "delta " << delta;
     EXPECT_EQ(j.explained, 0u) << "delta " << delta;
     EXPECT_EQ(j.exact, j.pixels - 1) << "delta " << delta;
@@ -112,8 +106,8 @@ TEST(Judge, AOneLsbChangeOnAnUnclassedPixelIsUnexplainedInEitherDirection) {
 }
 
 TEST(Judge, TheIntervalBoundsAreInclusiveAndOneLsbBeyondEitherBoundIsUnexplained) {
-  const Rendered r = render("blend");
-  const verify::Judgement ref = judgeOf(r, r.pixels);
+  const BoundedRender r = renderWithBounds("blend");
+  const verify::Judgement ref = judgeImage(r, r.pixels);
   // Classed pixels whose red interval lies strictly inside 0..255 and strictly contains the value, so
   // that lo, hi, lo - 1 and hi + 1 are all different from the oracle's byte and representable.
   const auto roomy = [&](size_t i) {
@@ -140,7 +134,7 @@ TEST(Judge, TheIntervalBoundsAreInclusiveAndOneLsbBeyondEitherBoundIsUnexplained
   }
   other[u[0] * 4] = uint8_t(r.pixels[u[0] * 4] + 1);  // unclassed, one LSB: unexplained
 
-  const verify::Judgement j = judgeOf(r, other);
+  const verify::Judgement j = judgeImage(r, other);
   EXPECT_EQ(j.explained, 2u);
   EXPECT_EQ(j.unexplained, 4u);
   EXPECT_EQ(j.exact, j.pixels - 6);
@@ -179,9 +173,9 @@ TEST(Judge, TheIntervalBoundsAreInclusiveAndOneLsbBeyondEitherBoundIsUnexplained
 }
 
 TEST(Judge, IdImagesAreComparedAgainstTheirIntervalsLikeColours) {
-  const Rendered r = render("city_ids");
+  const BoundedRender r = renderWithBounds("city_ids");
   ASSERT_EQ(r.tex->desc.format, Format::R32UI);
-  const verify::Judgement ref = judgeOf(r, r.pixels);
+  const verify::Judgement ref = judgeImage(r, r.pixels);
   auto word = [](const std::vector<uint8_t>& v, size_t i) {
     uint32_t x;
     std::memcpy(&x, &v[i * 4], 4);
@@ -198,20 +192,22 @@ TEST(Judge, IdImagesAreComparedAgainstTheirIntervalsLikeColours) {
   auto other = r.pixels;
   put(other, u[0], word(r.pixels, u[0]) ^ 1u);  // any other id on an unclassed pixel
   put(other, c[0], word(r.lo, c[0]));           // the other candidate of an edge pixel
-  verify::Judgement j = judgeOf(r, other);
+  verify::Judgement j = judgeImage(r, other);
   EXPECT_EQ(j.unexplained, 1u);
   EXPECT_EQ(j.explained, 1u);
   EXPECT_EQ(j.failMap[u[0]], 2);
   EXPECT_EQ(j.failMap[c[0]], 1);
 
   put(other, c[0], word(r.hi, c[0]) + 1u);  // beyond every candidate
-  j = judgeOf(r, other);
+  j = judgeImage(r, other);
   EXPECT_EQ(j.unexplained, 2u);
   EXPECT_EQ(j.explained, 0u);
 }
 
 TEST(Judge, AnImageOfTheWrongSizeIsAnError) {
-  const Rendered r = render("depth");
+  const BoundedRender r = renderWithBounds("depth");
   std::vector<uint8_t> shorter(r.pixels.begin(), r.pixels.end() - 4);
-  EXPECT_THROW(judgeOf(r, shorter), Error);
+  EXPECT_THROW(judgeImage(r, shorter), Error);
 }
+
+}  // namespace tessera

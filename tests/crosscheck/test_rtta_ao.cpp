@@ -5,9 +5,11 @@
 
 #include "tests/crosscheck/ao_two_step.h"
 
-using namespace tessera;
+namespace tessera {
 
 TEST(RttaGhostedAo, TheOcclusionAndEdgesOverGLsOwnCaptureDifferOnlyByOutputRounding) {
   static std::unique_ptr<gl::GlBackend> b = gl::GlBackend::create({});
   tessera::testing::judgeGhostedAoOnItsOwnCapture(*b, "llvmpipe", nullptr);
 }
+
+}  // namespace tessera

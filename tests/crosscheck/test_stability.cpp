@@ -7,13 +7,12 @@
 #include "tools/scenes/scenes.h"
 #include "verify/stability.h"
 
-using namespace tessera;
-using namespace tessera::verify;
+namespace tessera::verify {
 
 namespace {
 
 // The oracle's images of the list (through draw `through`), standing in for GL.
-std::vector<std::vector<uint8_t>> render(const CommandList& list, std::optional<size_t> through) {
+std::vector<std::vector<uint8_t>> renderImages(const CommandList& list, std::optional<size_t> through) {
   CommandList l = list;
   size_t draws = 0;
   if (through)
@@ -47,7 +46,7 @@ TEST(Stability, AConditionThatChangesOneDrawIsReportedWithThatDraw) {
   auto renderer = [&](const StabilityCondition& c, std::optional<size_t> through) {
     GlRuns runs;
     for (int r = 0; r < c.runs; ++r) {
-      auto imgs = render(list, through);
+      auto imgs = renderImages(list, through);
       if (c.name == "lp_threads_1" && drawsIn(list, through) > bad) imgs[0][0] ^= 0xff;
       if (c.name == "repeat_in_process" && r == 1 && drawsIn(list, through) > 9) imgs[0][4] ^= 1, imgs[0][5] ^= 1;
       runs.push_back(imgs);
@@ -75,7 +74,8 @@ TEST(Stability, AConditionThatChangesOneDrawIsReportedWithThatDraw) {
     }
   }
   const nlohmann::json same = checkStability(
-      list, conditions, [&](const StabilityCondition& c, std::optional<size_t> t) { return GlRuns(c.runs, render(list, t)); },
+      list, conditions,
+      [&](const StabilityCondition& c, std::optional<size_t> t) { return GlRuns(c.runs, renderImages(list, t)); },
       {size_t(256 * 192)});
   EXPECT_TRUE(same["stable"].get<bool>());
 }
@@ -91,3 +91,5 @@ TEST(Stability, TheCatalogueCoversRepeatThreadCountsOneCpuAndStrict) {
   EXPECT_TRUE(c[6].strict);
   EXPECT_EQ(stabilityConditions(1)[4].name, "lp_threads_2");  // N is at least 2, so it differs from 1
 }
+
+}  // namespace tessera::verify

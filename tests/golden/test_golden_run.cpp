@@ -17,7 +17,7 @@
 #include "tools/scenes/scene_goldens.h"
 #include "raster/image_io.h"
 
-using namespace tessera;
+namespace tessera {
 namespace fs = std::filesystem;
 
 namespace {
@@ -197,3 +197,5 @@ TEST(GoldenRun, UpdateRecreatesTheShippedEntriesAndCheckThenReportsEachKindOfDif
   EXPECT_TRUE(r.passedAll());
   EXPECT_EQ(golden::readManifest(dir.str() + "/manifest.json").tests, written.tests);
 }
+
+}  // namespace tessera

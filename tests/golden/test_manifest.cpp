@@ -9,7 +9,7 @@
 #include "base/error.h"
 #include "golden/manifest.h"
 
-using namespace tessera;
+namespace tessera {
 
 namespace {
 
@@ -138,3 +138,5 @@ TEST(GoldenManifest, ADirectoryWithoutAManifestHoldsAnEmptyOne) {
   EXPECT_TRUE(m.tests.empty());
   EXPECT_EQ(golden::manifestText(m), "{\n  \"tests\": {},\n  \"version\": 1\n}\n");
 }
+
+}  // namespace tessera

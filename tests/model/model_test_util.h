@@ -1,19 +1,30 @@
-// Helpers for the model tests: a scratch directory per test, small files, an RGBA PNG writer, and
-// errorOf / EXPECT_CONTAINS for asserting the text of a tessera::Error.
+// Helpers for the model tests: a scratch directory per test, small files, an RGBA PNG writer, the path of
+// data/railway.glb, a texcoord search, and errorOf / EXPECT_CONTAINS for asserting the text of a
+// tessera::Error.
 #pragma once
 
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
 
 #include "base/error.h"
+#include "model/model.h"
 #include "raster/image_io.h"
 
 namespace tessera::model::testing {
+
+// The real model that ships in the repository (data/README.md).
+inline const std::string kRailway = TESSERA_SOURCE_DIR "/data/railway.glb";
+
+// Whether some vertex of `m` has texcoord (u, v) exactly.
+inline bool hasTexcoord(const Mesh& m, float u, float v) {
+  return std::any_of(m.texcoords.begin(), m.texcoords.end(), [&](const glm::vec2& t) { return t.x == u && t.y == v; });
+}
 
 // A fresh directory named after the running test, removed by the destructor.
 struct ScratchDir {

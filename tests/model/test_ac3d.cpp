@@ -31,7 +31,7 @@ std::string loadError(const ScratchDir& dir, const std::string& name, const std:
 }
 
 // The (position, texcoord) corners of triangle t of `mesh`.
-std::array<std::pair<glm::vec3, glm::vec2>, 3> corners(const Mesh& mesh, size_t t) {
+std::array<std::pair<glm::vec3, glm::vec2>, 3> triangleCorners(const Mesh& mesh, size_t t) {
   std::array<std::pair<glm::vec3, glm::vec2>, 3> c;
   for (size_t k = 0; k < 3; ++k) {
     const uint32_t i = mesh.indices[3 * t + k];
@@ -66,7 +66,7 @@ TEST(Ac3d, AFileLoadsWithItsTextureAndRepeatedTexcoords) {
   // The quad is split along the diagonal from corner 0; v is flipped (v' = 1 - v), u is not clamped.
   const Mesh& mesh = m.meshes[0];
   ASSERT_EQ(mesh.triangleCount(), 2u);
-  const auto a = corners(mesh, 0), b = corners(mesh, 1);
+  const auto a = triangleCorners(mesh, 0), b = triangleCorners(mesh, 1);
   EXPECT_EQ(a[0].first, glm::vec3(0, 0, 0));
   EXPECT_EQ(a[1].first, glm::vec3(1, 0, 0));
   EXPECT_EQ(a[2].first, glm::vec3(1, 1, 0));
@@ -280,7 +280,7 @@ TEST(Ac3d, AConcavePolygonIsCutAlongItsInside) {
   ASSERT_EQ(m.triangleCount(), 4u);
   float sum = 0;
   for (size_t t = 0; t < 4; ++t) {
-    const auto c = corners(m.meshes[0], t);
+    const auto c = triangleCorners(m.meshes[0], t);
     const float a = (c[1].first.x - c[0].first.x) * (c[2].first.y - c[0].first.y) -
                     (c[1].first.y - c[0].first.y) * (c[2].first.x - c[0].first.x);
     EXPECT_GT(a, 0.0f);

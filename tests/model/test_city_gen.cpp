@@ -15,8 +15,8 @@ namespace {
 
 using testing::ScratchDir;
 
-CitySummary generate(CityPreset preset, uint32_t buildings, uint64_t seed, const std::string& dir,
-                     uint32_t textureSize = 64, CityImageFormat format = CityImageFormat::Png) {
+CitySummary generateSmallCity(CityPreset preset, uint32_t buildings, uint64_t seed, const std::string& dir,
+                              uint32_t textureSize = 64, CityImageFormat format = CityImageFormat::Png) {
   CityOptions o;
   o.preset = preset;
   o.buildings = buildings;
@@ -32,7 +32,7 @@ bool isPowerOfTwo(uint32_t v) { return v && !(v & (v - 1)); }
 
 TEST(CityGenerator, SmallBerlinRoundTripsWithOneFacadeTexturePerBuildingAndUntexturedRoofsAndGround) {
   ScratchDir dir;
-  const CitySummary s = generate(CityPreset::Berlin, 6, 7, dir / "out");
+  const CitySummary s = generateSmallCity(CityPreset::Berlin, 6, 7, dir / "out");
   // Facades are the whole textured workload (thesis §4.7.1: roofs and terrain are not in the atlas tree).
   EXPECT_EQ(s.textures, 6u);
   // 4 walls + roof per building; per cell of the 3 x 3 grid a lot and two street strips.
@@ -77,7 +77,7 @@ TEST(CityGenerator, SmallBerlinRoundTripsWithOneFacadeTexturePerBuildingAndUntex
 
 TEST(CityGenerator, SmallChemnitzRoundTripsWithRgbaPartsOddSizesAndOverAHundredRepeatsOnOneTriangle) {
   ScratchDir dir;
-  const CitySummary s = generate(CityPreset::Chemnitz, 8, 3, dir / "out");
+  const CitySummary s = generateSmallCity(CityPreset::Chemnitz, 8, 3, dir / "out");
   EXPECT_EQ(s.textures, 5u * 8);
   EXPECT_GT(s.rgbaTextures, 0u);
   const Model m = loadModel(s.gltf);
@@ -126,10 +126,10 @@ void expectSameFiles(const std::string& a, const std::string& b, const std::vect
 TEST(CityGenerator, TheSameSeedGivesIdenticalBytesInEveryFileForAnyThreadCount) {
   ScratchDir dir;
   for (CityPreset p : {CityPreset::Berlin, CityPreset::Chemnitz}) {
-    const CitySummary a = generate(p, 5, 11, dir / "a");
+    const CitySummary a = generateSmallCity(p, 5, 11, dir / "a");
     CitySummary b;
     tbb::task_arena one(1);
-    one.execute([&] { b = generate(p, 5, 11, dir / "b"); });
+    one.execute([&] { b = generateSmallCity(p, 5, 11, dir / "b"); });
     ASSERT_EQ(a.files, b.files);
     ASSERT_FALSE(a.files.empty()) << "nothing was generated, so nothing was compared";
     EXPECT_EQ(a.bytesOnDisk, b.bytesOnDisk);
@@ -140,7 +140,7 @@ TEST(CityGenerator, TheSameSeedGivesIdenticalBytesInEveryFileForAnyThreadCount) 
 TEST(CityGenerator, ADifferentSeedGivesDifferentGeometryAndTextures) {
   ScratchDir dir;
   for (CityPreset p : {CityPreset::Berlin, CityPreset::Chemnitz}) {
-    const CitySummary a = generate(p, 5, 11, dir / "a"), b = generate(p, 5, 12, dir / "b");
+    const CitySummary a = generateSmallCity(p, 5, 11, dir / "a"), b = generateSmallCity(p, 5, 12, dir / "b");
     const std::string bin = std::string(cityPresetName(p)) + ".bin";
     EXPECT_NE(testing::readFile(dir / "a/" + bin), testing::readFile(dir / "b/" + bin));
     size_t differing = 0;
@@ -153,7 +153,7 @@ TEST(CityGenerator, ADifferentSeedGivesDifferentGeometryAndTextures) {
 
 TEST(CityGenerator, JpegFormatWritesRgbTexturesAsJpegAndKeepsRgbaTexturesPng) {
   ScratchDir dir;
-  const CitySummary s = generate(CityPreset::Chemnitz, 4, 1, dir / "out", 64, CityImageFormat::Jpg);
+  const CitySummary s = generateSmallCity(CityPreset::Chemnitz, 4, 1, dir / "out", 64, CityImageFormat::Jpg);
   const Model m = loadModel(s.gltf);
   size_t jpg = 0, png = 0;
   for (size_t i = 0; i < m.textures.size(); ++i) {

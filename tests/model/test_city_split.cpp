@@ -15,7 +15,7 @@ namespace {
 
 using testing::ScratchDir;
 
-CitySummary generate(CityPreset preset, const std::string& dir, bool split) {
+CitySummary generateFiveBuildings(CityPreset preset, const std::string& dir, bool split) {
   CityOptions o;
   o.preset = preset;
   o.buildings = 5;
@@ -43,7 +43,8 @@ bool sameMaterial(const Material& a, const Material& b, const Model& ma, const M
 
 void expectTheSameCity(CityPreset preset) {
   ScratchDir dir;
-  const CitySummary one = generate(preset, dir / "one", false), split = generate(preset, dir / "split", true);
+  const CitySummary one = generateFiveBuildings(preset, dir / "one", false),
+                    split = generateFiveBuildings(preset, dir / "split", true);
   EXPECT_EQ(split.gltf, dir / "split" + "/" + cityPresetName(preset) + ".json");
   EXPECT_EQ(split.triangles, one.triangles);
   EXPECT_EQ(split.textures, one.textures);

@@ -16,9 +16,7 @@ namespace {
 
 using testing::ScratchDir;
 
-bool hasTexcoord(const Mesh& m, float u, float v) {
-  return std::any_of(m.texcoords.begin(), m.texcoords.end(), [&](const glm::vec2& t) { return t.x == u && t.y == v; });
-}
+using testing::hasTexcoord;
 
 // A glTF 2.0 file exercising what real exports use, written beside checker.png.
 std::string writeFeatureGltf(const ScratchDir& dir) {

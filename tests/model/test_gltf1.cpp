@@ -16,9 +16,7 @@ namespace {
 
 using testing::ScratchDir;
 
-bool hasTexcoord(const Mesh& m, float u, float v) {
-  return std::any_of(m.texcoords.begin(), m.texcoords.end(), [&](const glm::vec2& t) { return t.x == u && t.y == v; });
-}
+using testing::hasTexcoord;
 
 // A glTF 1.0 quad (positions, texcoords with u up to 2500, 6 indices) textured with checker.png,
 // written beside it. `bufferUri` empty: the buffer is a data: URI; else it is written to that file.

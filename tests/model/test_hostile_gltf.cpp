@@ -15,7 +15,7 @@ namespace {
 using testing::errorOf;
 using testing::ScratchDir;
 
-const std::string kHostile = TESSERA_SOURCE_DIR "/tests/model/hostile/gltf/";
+const std::string kHostileGltf = TESSERA_SOURCE_DIR "/tests/model/hostile/gltf/";
 
 // A glTF whose one mesh is a triangle (3 float positions in a data: URI), with `nodes` and the scene's
 // root list as given (JSON text).
@@ -81,7 +81,7 @@ TEST(Gltf, AChainAsDeepAsTheLimitLoadsWithEveryTranslationComposed) {
 TEST(Gltf, ANodeDagDescribing2To40InstancesFailsFast) {
   // It ran past 30 s and 3.5 GB. The message gives the whole graph's count, 2 * (2^40 - 1): a walk
   // that counted instances one by one could not know it without visiting all of them.
-  const std::string path = kHostile + "node-dag-2to40-instances.gltf";
+  const std::string path = kHostileGltf + "node-dag-2to40-instances.gltf";
   EXPECT_CONTAINS(errorOf([&] { loadModel(path); }),
                   path + ": needs 2199023255550 node instances, over the limit of 1000000 by 2199022255550");
   // Past the instance budget, the triangle and vertex budgets stop it: one triangle per leaf instance.
@@ -114,13 +114,13 @@ TEST(Gltf, ANodeReachedAlongTwoPathsIsInstancedOncePerPathInPreOrder) {
 
 TEST(Gltf, AnAccessorCountOf2To32MinusOneIsRefusedBeforeAllocating) {
   // Reader::floats allocated count * 3 floats (51 GB) before it checked the bufferView's range.
-  const std::string path = kHostile + "accessor-count-2to32-minus-1.gltf";
+  const std::string path = kHostileGltf + "accessor-count-2to32-minus-1.gltf";
   EXPECT_CONTAINS(errorOf([&] { loadModel(path); }),
                   path + ": /accessors/0: 4294967295 elements from byteOffset 0 overrun bufferView 0 (36 bytes)");
 }
 
 TEST(Gltf, AnIndexAccessorCountOf2To31IsRefusedBeforeAllocating) {
-  const std::string path = kHostile + "index-accessor-count-2to31.gltf";
+  const std::string path = kHostileGltf + "index-accessor-count-2to31.gltf";
   EXPECT_CONTAINS(errorOf([&] { loadModel(path); }),
                   path + ": /accessors/1: 2147483648 elements from byteOffset 0 overrun bufferView 1 (12 bytes)");
 }
@@ -128,7 +128,7 @@ TEST(Gltf, AnIndexAccessorCountOf2To31IsRefusedBeforeAllocating) {
 TEST(Gltf, AnAccessorCountOf2To62IsAClearErrorNotAnInternalError) {
   // count * 3 wrapped around and std::vector threw length_error, which the CLI reports as an internal
   // error (exit 3); errorOf fails the test on anything but tessera::Error.
-  const std::string path = kHostile + "accessor-count-2to62.gltf";
+  const std::string path = kHostileGltf + "accessor-count-2to62.gltf";
   EXPECT_CONTAINS(errorOf([&] { loadModel(path); }), path + ": /accessors/0: 4611686018427387904 elements");
 }
 
@@ -150,7 +150,7 @@ TEST(Gltf, AnAccessorWithoutABufferViewAndACountOf2To32IsRefusedByTheVertexBudge
 
 TEST(Gltf, AMatrixOfThreeNumbersIsAnError) {
   // tinygltf kept the 3 numbers and the loader used the identity instead.
-  const std::string path = kHostile + "node-matrix-of-3-numbers.gltf";
+  const std::string path = kHostileGltf + "node-matrix-of-3-numbers.gltf";
   EXPECT_CONTAINS(errorOf([&] { loadModel(path); }), path + ": /nodes/0/matrix: expected 16 numbers, got 3 values");
 }
 
@@ -170,7 +170,7 @@ TEST(Gltf, ATranslationRotationOrScaleOfTheWrongArityOrNotANumberIsAnError) {
 
 TEST(Gltf, AWrapSOf12345IsAnError) {
   // tinygltf passes any integer through; the loader made it REPEAT.
-  const std::string path = kHostile + "sampler-wrapS-12345.gltf";
+  const std::string path = kHostileGltf + "sampler-wrapS-12345.gltf";
   EXPECT_CONTAINS(errorOf([&] { loadModel(path); }),
                   path +
                       ": /samplers/0/wrapS: 12345 is not one of glTF 2.0's values (33071 CLAMP_TO_EDGE, 33648 "
@@ -199,7 +199,7 @@ TEST(Gltf, FilterValuesOutsideGltfEnumsAreErrors) {
 
 TEST(Gltf, AMaterialTexCoordSetThePrimitiveLacksIsAnError) {
   // The loader noted "texcoords left empty" and the textured material rendered as its factor alone.
-  const std::string path = kHostile + "material-texcoord-set-missing.gltf";
+  const std::string path = kHostileGltf + "material-texcoord-set-missing.gltf";
   EXPECT_CONTAINS(errorOf([&] { loadModel(path); }),
                   path +
                       ": /meshes/0/primitives/0/attributes: material 0's base colour texture reads texCoord 1 "
@@ -208,7 +208,7 @@ TEST(Gltf, AMaterialTexCoordSetThePrimitiveLacksIsAnError) {
 
 TEST(Gltf, AMeshIndexOf2To32DoesNotWrapToZero) {
   // tinygltf reads indices as int: 4294967296 became mesh 0.
-  const std::string path = kHostile + "node-mesh-index-2to32.gltf";
+  const std::string path = kHostileGltf + "node-mesh-index-2to32.gltf";
   EXPECT_CONTAINS(errorOf([&] { loadModel(path); }),
                   path + ": /nodes/0/mesh: 4294967296 is not an index (an integer from 0 to 2147483647)");
 }
@@ -242,7 +242,7 @@ TEST(Gltf, APrimitiveModeOutside0To6IsAnError) {
 
 TEST(Gltf, ExtrasNestedDeeperThanTheLimitAreRefusedBeforeTinygltfRecursesIntoThem) {
   // 100,000 levels overflowed the stack in tinygltf's recursive conversion of `extras`.
-  const std::string path = kHostile + "extras-nested-300-deep.gltf";
+  const std::string path = kHostileGltf + "extras-nested-300-deep.gltf";
   const std::string e = errorOf([&] { loadModel(path); });
   EXPECT_CONTAINS(e, path +
                          ": /extras/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/...: JSON arrays and objects nest deeper than "

@@ -14,19 +14,19 @@ namespace {
 using testing::errorOf;
 using testing::ScratchDir;
 
-const std::string kHostile = TESSERA_SOURCE_DIR "/tests/model/hostile/obj/";
+const std::string kHostileObj = TESSERA_SOURCE_DIR "/tests/model/hostile/obj/";
 const std::string kTriangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
 
 TEST(Obj, AVtIndexPastTheEndIsAnErrorNamingTheLine) {
   // The loader dropped the texcoord of that corner without a word.
-  const std::string path = kHostile + "vt-index-past-the-end.obj";
+  const std::string path = kHostileObj + "vt-index-past-the-end.obj";
   EXPECT_CONTAINS(errorOf([&] { loadModel(path); }),
                   path + ":7: f: texcoord index 9 does not exist: the file has 3 vt");
 }
 
 TEST(Obj, AFaceIndexThatOverflows32BitsIsAnErrorNotAWrap) {
   // tinyobjloader's atoi turned 99999999999999999999 into -1: the last vertex.
-  const std::string path = kHostile + "face-index-overflowing-32-bits.obj";
+  const std::string path = kHostileObj + "face-index-overflowing-32-bits.obj";
   EXPECT_CONTAINS(errorOf([&] { loadModel(path); }),
                   path + ":4: f: vertex index 99999999999999999999 does not fit in 32 bits");
   ScratchDir dir;
@@ -63,9 +63,9 @@ TEST(Obj, EveryValidIndexFormStillLoads) {
 
 TEST(Obj, AMissingMtllibFileIsAnErrorNamingTheLine) {
   // tinyobjloader warned and went on with a default material.
-  const std::string path = kHostile + "mtllib-missing.obj";
+  const std::string path = kHostileObj + "mtllib-missing.obj";
   EXPECT_CONTAINS(errorOf([&] { loadModel(path); }),
-                  path + ":1: mtllib 'missing.mtl': material library '" + kHostile + "missing.mtl' does not exist");
+                  path + ":1: mtllib 'missing.mtl': material library '" + kHostileObj + "missing.mtl' does not exist");
   ScratchDir dir;
   std::filesystem::create_directories(dir.path / "lib.mtl");
   testing::writeFile(dir / "a.obj", "mtllib lib.mtl\n" + kTriangle + "f 1 2 3\n");
@@ -76,16 +76,16 @@ TEST(Obj, AMissingMtllibFileIsAnErrorNamingTheLine) {
 
 TEST(Obj, AnMtllibNamingTheObjItselfIsAnError) {
   // tinyobjloader read the OBJ as a material library, ignoring every line it did not know.
-  const std::string path = kHostile + "mtllib-naming-itself.obj";
+  const std::string path = kHostileObj + "mtllib-naming-itself.obj";
   EXPECT_CONTAINS(errorOf([&] { loadModel(path); }),
                   path + ":1: mtllib 'mtllib-naming-itself.obj' names this OBJ file itself, not a material library");
 }
 
 TEST(Obj, AMaterialLibraryThatIncludesItselfIsAnError) {
-  const std::string path = kHostile + "mtllib-recursive.obj";
+  const std::string path = kHostileObj + "mtllib-recursive.obj";
   EXPECT_CONTAINS(
       errorOf([&] { loadModel(path); }),
-      kHostile + "recursive.mtl:3: mtllib inside a material library (an MTL file cannot include other files)");
+      kHostileObj + "recursive.mtl:3: mtllib inside a material library (an MTL file cannot include other files)");
 }
 
 TEST(Obj, AnMtllibListingTwoLibrariesLoadsBoth) {

@@ -15,7 +15,7 @@ namespace {
 
 using testing::ScratchDir;
 
-const std::string kRailway = TESSERA_SOURCE_DIR "/data/railway.glb";
+using testing::kRailway;
 
 using testing::errorOf;
 

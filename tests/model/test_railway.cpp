@@ -10,11 +10,12 @@
 
 #include "base/sha256.h"
 #include "model/model.h"
+#include "model_test_util.h"
 
 namespace tessera::model {
 namespace {
 
-const std::string kRailway = TESSERA_SOURCE_DIR "/data/railway.glb";
+using testing::kRailway;
 
 // Fails (never skips) when the file is missing: these tests are the loader's contact with real data.
 const Model& railway() {

@@ -33,7 +33,7 @@ std::string writeManifest(const ScratchDir& dir, const nlohmann::json& models, c
 }
 
 // The positions of mesh `i` in the order of its triangle's corners.
-std::vector<glm::vec3> corners(const Model& m, size_t i) {
+std::vector<glm::vec3> meshCorners(const Model& m, size_t i) {
   std::vector<glm::vec3> out;
   for (uint32_t k : m.meshes.at(i).indices) out.push_back(m.meshes[i].positions[k]);
   return out;
@@ -49,9 +49,9 @@ TEST(SceneManifest, EntriesAreMergedInOrderWithTheirTransformsSharingTexturesAnd
   EXPECT_EQ(m.loader, "scene:manifest");
   EXPECT_EQ(m.source, scene);
   ASSERT_EQ(m.meshes.size(), 2u);
-  EXPECT_EQ(corners(m, 0), (std::vector<glm::vec3>{{10, 0, 0}, {11, 0, 0}, {10, 1, 0}}));
+  EXPECT_EQ(meshCorners(m, 0), (std::vector<glm::vec3>{{10, 0, 0}, {11, 0, 0}, {10, 1, 0}}));
   // Column-major, as glTF's node.matrix: elements 12, 13, 14 are the translation.
-  EXPECT_EQ(corners(m, 1), (std::vector<glm::vec3>{{7, 8, 9}, {8, 8, 9}, {7, 9, 9}}));
+  EXPECT_EQ(meshCorners(m, 1), (std::vector<glm::vec3>{{7, 8, 9}, {8, 8, 9}, {7, 9, 9}}));
   EXPECT_EQ(m.textures.size(), 1u);  // the same tex.png, once
   EXPECT_EQ(m.materials.size(), 1u);
   EXPECT_EQ(m.meshes[0].material, m.meshes[1].material);
@@ -74,21 +74,21 @@ TEST(SceneManifest, RotationIsInDegreesXThenYThenZAndQuarterTurnsAreExact) {
   const Model m = loadModel(scene);
   ASSERT_EQ(m.meshes.size(), 4u);
   // About y by 90: x -> -z, y stays.
-  EXPECT_EQ(corners(m, 0), (std::vector<glm::vec3>{{0, 0, 0}, {0, 0, -1}, {0, 1, 0}}));
+  EXPECT_EQ(meshCorners(m, 0), (std::vector<glm::vec3>{{0, 0, 0}, {0, 0, -1}, {0, 1, 0}}));
   // x first (y -> z), then z (x -> y): (1,0,0) -> (0,1,0), (0,1,0) -> (0,0,1). The other order would
   // send (1,0,0) to (0,0,1).
-  EXPECT_EQ(corners(m, 1), (std::vector<glm::vec3>{{0, 0, 0}, {0, 1, 0}, {0, 0, 1}}));
+  EXPECT_EQ(meshCorners(m, 1), (std::vector<glm::vec3>{{0, 0, 0}, {0, 1, 0}, {0, 0, 1}}));
   // -630 = 90 (mod 360) about z: x -> y, y -> -x.
-  EXPECT_EQ(corners(m, 2), (std::vector<glm::vec3>{{0, 0, 0}, {0, 1, 0}, {-1, 0, 0}}));
+  EXPECT_EQ(meshCorners(m, 2), (std::vector<glm::vec3>{{0, 0, 0}, {0, 1, 0}, {-1, 0, 0}}));
   // Scale first, then a half turn: (1,0,0) -> (2,0,0) -> (-2,0,0); (0,1,0) -> (0,3,0) -> (0,-3,0).
-  EXPECT_EQ(corners(m, 3), (std::vector<glm::vec3>{{0, 0, 0}, {-2, 0, 0}, {0, -3, 0}}));
+  EXPECT_EQ(meshCorners(m, 3), (std::vector<glm::vec3>{{0, 0, 0}, {-2, 0, 0}, {0, -3, 0}}));
 }
 
 TEST(SceneManifest, AMirroringScaleKeepsTrianglesCounterClockwise) {
   ScratchDir dir;
   writeTriangle(dir, "a.ac");
   const Model m = loadModel(writeManifest(dir, {{{"file", "a.ac"}, {"scale", {-1, 1, 1}}}}));
-  const std::vector<glm::vec3> c = corners(m, 0);
+  const std::vector<glm::vec3> c = meshCorners(m, 0);
   ASSERT_EQ(c.size(), 3u);
   const glm::vec3 e1 = c[1] - c[0], e2 = c[2] - c[0];
   EXPECT_EQ(e1.x * e2.y - e1.y * e2.x, 1.0f);  // twice the area, positive: still counter-clockwise
@@ -106,7 +106,7 @@ TEST(SceneManifest, ADirectoryIsEveryModelFileInItSortedByNameWithIdentityTransf
   ASSERT_EQ(m.objects.size(), 2u);
   EXPECT_EQ(m.objects[0].name, "ay");
   EXPECT_EQ(m.objects[1].name, "bee");
-  EXPECT_EQ(corners(m, 1), (std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}));
+  EXPECT_EQ(meshCorners(m, 1), (std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}));
   std::filesystem::create_directories(dir.path / "empty");
   EXPECT_EQ(
       errorOf([&] { loadModel(dir / "empty"); }),

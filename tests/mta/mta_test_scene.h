@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <initializer_list>
 #include <string>
 
@@ -116,5 +117,10 @@ struct TempFile {
     std::filesystem::remove(path, ec);
   }
 };
+
+// Writes `text` to `path` byte for byte (binary, truncating).
+inline void writeText(const std::string& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << text;
+}
 
 }  // namespace tessera::mta::testing

@@ -21,7 +21,7 @@ using testing::fixture;
 
 // From far away to close up along the 12 x 12 wall, so that frames range from the root alone to dozens
 // of leaves with their 144 original textures.
-std::vector<ViewParams> views() {
+std::vector<ViewParams> budgetViews() {
   std::vector<ViewParams> out;
   for (int i = 0; i < 12; ++i) {
     ViewParams v;
@@ -69,7 +69,7 @@ std::vector<std::pair<uint32_t, uint32_t>> triangles(const FramePlan& p) {
 
 TEST(BindBudget, WithoutACapOrWithACapTheFrameMeetsAnywayThePlanIsPlanFramesOwn) {
   const Planned p;
-  for (const ViewParams& v : views()) {
+  for (const ViewParams& v : budgetViews()) {
     const FramePlan free = p.plan(v, 0);
     const FramePlan roomy = p.plan(v, textureKeyCount(free));
     EXPECT_EQ(free.coarsenedForBinds, 0u);
@@ -86,7 +86,7 @@ TEST(BindBudget, WithoutACapOrWithACapTheFrameMeetsAnywayThePlanIsPlanFramesOwn)
 TEST(BindBudget, ACapIsMetByDrawingRefinedNodesWithTheirAtlasesAndTheSameTrianglesAreDrawn) {
   const Planned p;
   uint32_t framesCapped = 0;
-  for (const ViewParams& v : views()) {
+  for (const ViewParams& v : budgetViews()) {
     const FramePlan free = p.plan(v, 0);
     const uint32_t keys = textureKeyCount(free);
     for (uint32_t cap : {1u, 2u, 4u, keys / 2, keys - 1}) {
@@ -112,7 +112,7 @@ TEST(BindBudget, ACapIsMetByDrawingRefinedNodesWithTheirAtlasesAndTheSameTriangl
 TEST(BindBudget, TheNodeCoarsenedFirstIsTheOneThatMissesTheDistanceTestByTheLeast) {
   const Planned p;
   uint32_t checked = 0;
-  for (const ViewParams& v : views()) {
+  for (const ViewParams& v : budgetViews()) {
     const FramePlan free = p.plan(v, 0);
     if (free.refined.empty()) continue;
     const RefinedNode* best = &free.refined.front();
@@ -153,7 +153,7 @@ TEST(BindBudget, ACappedFrameBindsAtMostTheCapAndItsViolationsAreCounted) {
   capped.maxBinds = 3;
   TreeRenderer free(f, o), cap(f, capped);
   uint64_t coarsened = 0, violations = 0, cappedBinds = 0, freeBinds = 0;
-  for (const ViewParams& v : views()) {
+  for (const ViewParams& v : budgetViews()) {
     const FrameResult a = free.renderFrame(v.camera), b = cap.renderFrame(v.camera);
     EXPECT_EQ(a.plan.coarsenedForBinds, 0u);
     // Binds follow the keys; the keys meet the cap unless nothing was left to coarsen.

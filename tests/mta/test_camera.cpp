@@ -281,20 +281,18 @@ TEST(CameraPath, PathFileRoundTripIsExact) {
   EXPECT_EQ(std::string(std::istreambuf_iterator<char>(a), {}), std::string(std::istreambuf_iterator<char>(b), {}));
 }
 
-void writeText(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
-
 TEST(CameraPath, PathFileDirectivesApplyToTheFramesThatFollow) {
   testing::TempFile f("directives.path");
-  writeText(f.path,
-            "\xEF\xBB\xBF# a comment\r\n"
-            "\n"
-            "tessera-camera-path 1   # trailing comment\r\n"
-            "fov 90\n"
-            "near 0.25\n"
-            "far 2e3\n"
-            "0 1.5 0   +10 1.5 0\n"
-            "up 0 0 1\n"
-            "\t1 2 3 4 5 6\n");
+  testing::writeText(f.path,
+                     "\xEF\xBB\xBF# a comment\r\n"
+                     "\n"
+                     "tessera-camera-path 1   # trailing comment\r\n"
+                     "fov 90\n"
+                     "near 0.25\n"
+                     "far 2e3\n"
+                     "0 1.5 0   +10 1.5 0\n"
+                     "up 0 0 1\n"
+                     "\t1 2 3 4 5 6\n");
   const CameraPath p = readPathFile(f.path);
   EXPECT_EQ(p.name, std::filesystem::path(f.path).stem().string());  // no name directive: the file name's stem
   EXPECT_NE(p.name.find("directives"), std::string::npos);
@@ -344,7 +342,7 @@ TEST(CameraPath, MalformedPathFilesThrowNamingTheFileAndTheLine) {
   };
   for (size_t i = 0; i < std::size(cases); ++i) {
     testing::TempFile f("bad" + std::to_string(i) + ".path");
-    writeText(f.path, cases[i].text);
+    testing::writeText(f.path, cases[i].text);
     const std::string m = messageOf([&] { readPathFile(f.path); });
     EXPECT_NE(m.find(f.path + ":" + std::to_string(cases[i].line) + ":"), std::string::npos)
         << "case " << i << ": " << m;

@@ -18,12 +18,9 @@ namespace tessera::mta {
 namespace {
 
 using testing::TempFile;
+using testing::writeText;
 
 const std::string kHeader = "tessera-camera-path 1\n";
-
-void writeText(const std::string& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary | std::ios::trunc) << text;
-}
 
 std::string readError(const std::string& path) {
   try {
@@ -35,7 +32,7 @@ std::string readError(const std::string& path) {
 }
 
 // Reads `text` as a path file and expects an Error at `line` containing `reason`.
-void expectRefused(const std::string& text, size_t line, const std::string& reason) {
+void expectPathRefused(const std::string& text, size_t line, const std::string& reason) {
   TempFile f("bad.path");
   writeText(f.path, text);
   const std::string m = readError(f.path);
@@ -46,17 +43,17 @@ void expectRefused(const std::string& text, size_t line, const std::string& reas
 TEST(CameraPathFile, ACoordinateAbove1e15IsRefused) {
   // 1e16 is finite, but eye, target and the view matrix would leave float range together with a narrow
   // field of view.
-  expectRefused(kHeader + "0 0 0 1e16 0 0\n", 2, "'1e16' exceeds 1e+15 in magnitude");
-  expectRefused(kHeader + "-1e300 0 0 1 0 0\n", 2, "'-1e300' exceeds 1e+15");
-  expectRefused(kHeader + "near 2e15\n0 0 0 1 0 0\n", 2, "'2e15' exceeds");
-  expectRefused(kHeader + "up 0 1e20 0\n0 0 0 1 0 0\n", 2, "'1e20' exceeds");
+  expectPathRefused(kHeader + "0 0 0 1e16 0 0\n", 2, "'1e16' exceeds 1e+15 in magnitude");
+  expectPathRefused(kHeader + "-1e300 0 0 1 0 0\n", 2, "'-1e300' exceeds 1e+15");
+  expectPathRefused(kHeader + "near 2e15\n0 0 0 1 0 0\n", 2, "'2e15' exceeds");
+  expectPathRefused(kHeader + "up 0 1e20 0\n0 0 0 1 0 0\n", 2, "'1e20' exceeds");
 }
 
 TEST(CameraPathFile, ATanHalfFovOutsideItsRangeIsRefused) {
-  expectRefused(kHeader + "tan_half_fov 1e-7\n0 0 0 1 0 0\n", 2, "tan_half_fov '1e-7': must be in [1e-06, 1e+06]");
-  expectRefused(kHeader + "tan_half_fov 2e6\n0 0 0 1 0 0\n", 2, "must be in [1e-06, 1e+06]");
+  expectPathRefused(kHeader + "tan_half_fov 1e-7\n0 0 0 1 0 0\n", 2, "tan_half_fov '1e-7': must be in [1e-06, 1e+06]");
+  expectPathRefused(kHeader + "tan_half_fov 2e6\n0 0 0 1 0 0\n", 2, "must be in [1e-06, 1e+06]");
   // fov in (0, 180) but so narrow that tan(fov / 2) is below 1e-6.
-  expectRefused(kHeader + "fov 1e-5\n0 0 0 1 0 0\n", 2, "fov '1e-5': tan(fov / 2) = ");
+  expectPathRefused(kHeader + "fov 1e-5\n0 0 0 1 0 0\n", 2, "fov '1e-5': tan(fov / 2) = ");
 }
 
 TEST(CameraPathFile, MoreThanAMillionFramesAreRefused) {
@@ -64,20 +61,20 @@ TEST(CameraPathFile, MoreThanAMillionFramesAreRefused) {
   std::string text = kHeader;
   text.reserve(kHeader.size() + 12 * (size_t(kMaxPathFrames) + 1));
   for (uint32_t i = 0; i <= kMaxPathFrames; ++i) text += "0 0 0 1 0 0\n";
-  expectRefused(text, size_t(kMaxPathFrames) + 2, "more than 1000000 frames");
+  expectPathRefused(text, size_t(kMaxPathFrames) + 2, "more than 1000000 frames");
 }
 
 TEST(CameraPathFile, ALineLongerThan4096BytesIsRefused) {
   ASSERT_EQ(kMaxPathLineBytes, 4096u);
   // A complete line (even a comment) of 4097 bytes.
-  expectRefused(kHeader + "#" + std::string(4096, 'x') + "\n0 0 0 1 0 0\n", 2,
-                "the line is 4097 bytes long, over the limit of 4096");
+  expectPathRefused(kHeader + "#" + std::string(4096, 'x') + "\n0 0 0 1 0 0\n", 2,
+                    "the line is 4097 bytes long, over the limit of 4096");
   // 4096 bytes are accepted.
   TempFile ok("ok.path");
   writeText(ok.path, kHeader + "#" + std::string(4095, 'x') + "\n0 0 0 1 0 0\n");
   EXPECT_EQ(readPathFile(ok.path).frames.size(), 1u);
   // A line without an end is refused once it passes the limit, without reading the rest.
-  expectRefused(kHeader + "0 0 0 1 0 0\n" + std::string(200000, '7'), 3, "the line is longer than 4096 bytes");
+  expectPathRefused(kHeader + "0 0 0 1 0 0\n" + std::string(200000, '7'), 3, "the line is longer than 4096 bytes");
 }
 
 TEST(CameraPathFile, DevZeroIsRefusedAtItsFirstLine) {
@@ -87,18 +84,18 @@ TEST(CameraPathFile, DevZeroIsRefusedAtItsFirstLine) {
 }
 
 TEST(CameraPathFile, BinaryGarbageIsRefused) {
-  expectRefused(kHeader + "0 0 0 1 0 0\n" + std::string("\x00\x01\x02 7", 5) + "\n", 3,
-                "byte 0x00 at column 1 is a control character (a camera path file is text)");
+  expectPathRefused(kHeader + "0 0 0 1 0 0\n" + std::string("\x00\x01\x02 7", 5) + "\n", 3,
+                    "byte 0x00 at column 1 is a control character (a camera path file is text)");
   // A PNG file given as a path: 0x89 cannot start a UTF-8 character.
-  expectRefused("\x89PNG\r\n\x1a\n", 1, "invalid UTF-8 at column 1");
-  expectRefused(kHeader + "0 0 0 1 0 0 \x7f\n", 2, "byte 0x7f at column 13 is a control character");
+  expectPathRefused("\x89PNG\r\n\x1a\n", 1, "invalid UTF-8 at column 1");
+  expectPathRefused(kHeader + "0 0 0 1 0 0 \x7f\n", 2, "byte 0x7f at column 13 is a control character");
 }
 
 TEST(CameraPathFile, InvalidUtf8IsRefusedEvenInANameOrAComment) {
   // The name goes into frames.json, which must be UTF-8.
-  expectRefused(kHeader + "name caf\xe9\n0 0 0 1 0 0\n", 2, "invalid UTF-8 at column 9");
-  expectRefused(kHeader + "# \xed\xa0\x80 a surrogate\n0 0 0 1 0 0\n", 2, "invalid UTF-8 at column 3");
-  expectRefused(kHeader + "# \xc0\xaf overlong\n0 0 0 1 0 0\n", 2, "invalid UTF-8 at column 3");
+  expectPathRefused(kHeader + "name caf\xe9\n0 0 0 1 0 0\n", 2, "invalid UTF-8 at column 9");
+  expectPathRefused(kHeader + "# \xed\xa0\x80 a surrogate\n0 0 0 1 0 0\n", 2, "invalid UTF-8 at column 3");
+  expectPathRefused(kHeader + "# \xc0\xaf overlong\n0 0 0 1 0 0\n", 2, "invalid UTF-8 at column 3");
   TempFile ok("ok.path");
   writeText(ok.path, kHeader + "name caf\xc3\xa9 \xe2\x86\x92 \xf0\x9f\x9a\x86\n0 0 0 1 0 0\n");
   EXPECT_EQ(readPathFile(ok.path).name, "caf\xc3\xa9 \xe2\x86\x92 \xf0\x9f\x9a\x86");

@@ -84,7 +84,7 @@ SharedTree& sharedTree(bool decals) {
 
 // From far away (node atlases) to near, then along the wall close up (the nearest leaves with their original
 // textures, the others with atlases).
-std::vector<ViewParams> views(const MtaMeta& meta) {
+std::vector<ViewParams> drawOrderViews(const MtaMeta& meta) {
   std::vector<ViewParams> out;
   for (int i = 0; i < 16; ++i) {
     ViewParams v;
@@ -235,7 +235,7 @@ TEST(DrawOrder, GroupingIsAFunctionOfThePlanAndDrawsEveryTriangleExactlyOnce) {
   const SharedTree& t = sharedTree(false);
   size_t framesReordered = 0;
   for (RenderMode mode : {RenderMode::AtlasTree, RenderMode::Original, RenderMode::Dummy})
-    for (const ViewParams& v : views(t.tree->meta())) {
+    for (const ViewParams& v : drawOrderViews(t.tree->meta())) {
       const FramePlan leafByLeaf = plan(t, v, mode);
       const FramePlan g = grouped(leafByLeaf);
       EXPECT_EQ(drawnTimes(g, t.geometry.triangleCount()), drawnTimes(leafByLeaf, t.geometry.triangleCount()));
@@ -258,7 +258,7 @@ TEST(DrawOrder, EachTextureIsBoundOnceAFrameSoBindsAreAtMostAtlasNodesPlusDistin
   const SharedTree& t = sharedTree(false);
   size_t framesOverTheBoundBefore = 0, framesWithOriginals = 0;
   for (RenderMode mode : {RenderMode::AtlasTree, RenderMode::Original})
-    for (const ViewParams& v : views(t.tree->meta())) {
+    for (const ViewParams& v : drawOrderViews(t.tree->meta())) {
       const FramePlan leafByLeaf = plan(t, v, mode);
       std::set<int32_t> originals;
       bool white = false;
@@ -285,7 +285,7 @@ TEST(DrawOrder, WithoutDepthTiesTheGroupedFrameIsByteIdenticalToTheLeafByLeafFra
   const SharedTree& t = sharedTree(false);
   size_t reordered = 0, coveredPixels = 0;
   for (RenderMode mode : {RenderMode::AtlasTree, RenderMode::Original})
-    for (const ViewParams& v : views(t.tree->meta())) {
+    for (const ViewParams& v : drawOrderViews(t.tree->meta())) {
       const FramePlan leafByLeaf = plan(t, v, mode), g = grouped(leafByLeaf);
       if (sameDraws(g, leafByLeaf)) continue;
       ++reordered;
@@ -320,7 +320,7 @@ TEST(DrawOrder, WhereFragmentsTieInDepthOnlyTheWinnerCanChangeAndTheDepthBufferN
   const SharedTree& t = sharedTree(true);
   size_t reordered = 0, colourChanged = 0;
   for (RenderMode mode : {RenderMode::AtlasTree, RenderMode::Original})
-    for (const ViewParams& v : views(t.tree->meta())) {
+    for (const ViewParams& v : drawOrderViews(t.tree->meta())) {
       const FramePlan leafByLeaf = plan(t, v, mode), g = grouped(leafByLeaf);
       if (sameDraws(g, leafByLeaf)) continue;
       ++reordered;

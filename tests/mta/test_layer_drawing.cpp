@@ -71,7 +71,7 @@ void build(const Scene& s, const std::string& path) {
   buildMta(s, p, path);
 }
 
-RendererOptions options(RenderMode mode) {
+RendererOptions layerOptions(RenderMode mode) {
   RendererOptions o;
   o.mode = mode;
   o.width = 128;
@@ -115,7 +115,7 @@ TEST(LayerDrawing, AnAtlasNodeMultipliesItsLayerOneAtlasRedIntoLayerZeroAndAMesh
   build(twoQuads(true), file.path);
   const PagingFile f(file.path);
   ASSERT_EQ(f.meta().layerCount, 2u);
-  TreeRenderer r(f, options(RenderMode::AtlasTree));
+  TreeRenderer r(f, layerOptions(RenderMode::AtlasTree));
   const FrameResult fr = r.renderFrame(facing());
   ASSERT_EQ(fr.plan.atlasNodes, 1u);
   ASSERT_EQ(fr.plan.originalLeaves, 0u);
@@ -134,7 +134,7 @@ TEST(LayerDrawing, OriginalTexturesBindTheLightMapOrWhiteOnUnitOnePerRun) {
   TempFile file("lit.mta");
   build(twoQuads(true), file.path);
   const PagingFile f(file.path);
-  TreeRenderer r(f, options(RenderMode::Original));
+  TreeRenderer r(f, layerOptions(RenderMode::Original));
   const FrameResult fr = r.renderFrame(facing());
   ASSERT_EQ(fr.plan.originalLeaves, 1u);
   const Census c = census(fr, kLitA, kBaseB);
@@ -153,7 +153,7 @@ TEST(LayerDrawing, AFileWithoutLayerOneBindsNothingOnUnitOneAndDrawsTheBaseColou
   const PagingFile f(file.path);
   ASSERT_EQ(f.meta().layerCount, 1u);
   for (RenderMode mode : {RenderMode::AtlasTree, RenderMode::Original}) {
-    TreeRenderer r(f, options(mode));
+    TreeRenderer r(f, layerOptions(mode));
     const FrameResult fr = r.renderFrame(facing());
     const Census c = census(fr, kBaseA, kBaseB);
     EXPECT_GT(c.a, 1000u) << renderModeName(mode);
@@ -197,7 +197,7 @@ TEST(LayerDrawing, TheMemoryManagerRequestsAndPinsLayerOneBlocks) {
   build(twoQuads(true), file.path);
   const PagingFile f(file.path);
   const MtaMeta& m = f.meta();
-  TreeRenderer atlas(f, options(RenderMode::AtlasTree));
+  TreeRenderer atlas(f, layerOptions(RenderMode::AtlasTree));
   atlas.renderFrame(facing());
   // The root's layer-1 atlas is pinned like its layer 0.
   const uint32_t root1 = m.trees[0].atlasBlocks[1];

@@ -26,7 +26,7 @@ Scene railway() {
   return sceneFromModel(std::make_shared<const model::Model>(model::loadModel(path)));
 }
 
-BuildParams smallParams(double dMin) {
+BuildParams outputSizeParams(double dMin) {
   BuildParams p;
   p.atlasSize = 64;
   p.border = 2;
@@ -93,13 +93,14 @@ TEST(OutputSize, TheEstimateIsTheExactFileSizeOfAGeneratedCity) {
 
 TEST(OutputSize, TheEstimateCountsBothTreesAndEveryLayer) {
   // An RGB and an RGBA tree (4 bytes per texel) and a second layer (one more atlas per node).
-  expectEstimateIsTheFile(gridScene(8, 8, 32, 2.0f, true, true), smallParams(2.0), "grid with alpha and two layers");
+  expectEstimateIsTheFile(gridScene(8, 8, 32, 2.0f, true, true), outputSizeParams(2.0),
+                          "grid with alpha and two layers");
 }
 
 TEST(OutputSize, MetadataBytesIsTheSizeOfTheEncodedMetadata) {
   const Scene s = gridScene(6, 6, 32, 2.0f, true, true);
   TempFile out("tree.mta");
-  buildMta(s, smallParams(2.0), out.path);
+  buildMta(s, outputSizeParams(2.0), out.path);
   const PagingFile f(out.path);
   EXPECT_EQ(metadataBytes(f.meta(), f.meta().pieces.size(), f.meta().blocks.size()), encodeMetadata(f.meta()).size());
 }
@@ -170,7 +171,7 @@ void expectNothingWritten(const std::string& path) {
 
 TEST(OutputGuard, APlanOverTheLimitIsRefusedBeforeTheOutputExistsNamingADMinThatFits) {
   const Scene s = gridScene(8, 8, 32, 2.0f, true, true);
-  const BuildParams p = smallParams(0.5);
+  const BuildParams p = outputSizeParams(0.5);
   const OutputEstimate full = estimateOutput(planBuild(s, p));
   OutputGuard g;
   g.maxBytes = full.totalBytes - 1;
@@ -195,7 +196,7 @@ TEST(OutputGuard, APlanOverTheLimitIsRefusedBeforeTheOutputExistsNamingADMinThat
   ASSERT_NE(at, std::string::npos) << message;
   const double suggested = std::stod(message.substr(at + key.size()));
   EXPECT_GT(suggested, 0.5);
-  const OutputEstimate fits = estimateOutput(planBuild(s, smallParams(suggested)));
+  const OutputEstimate fits = estimateOutput(planBuild(s, outputSizeParams(suggested)));
   EXPECT_LE(fits.totalBytes, g.maxBytes);
   EXPECT_NE(message.find("d_min " + formatDMin(suggested) + " fits (" + formatBytes(fits.totalBytes)),
             std::string::npos)
@@ -211,7 +212,7 @@ TEST(OutputGuard, WhenNoDMinFitsTheMessageSaysSoAndNamesTheSmallestTree) {
   g.maxBytes = 300;  // less than the metadata alone
   TempFile out("tree.mta");
   try {
-    buildMta(s, smallParams(0.5), out.path, g);
+    buildMta(s, outputSizeParams(0.5), out.path, g);
     FAIL() << "built into 300 bytes";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("no d_min fits"), std::string::npos) << e.what();
@@ -245,7 +246,7 @@ TEST(OutputGuard, FitChoosesADMinThatFitsWhoseNextFinerCandidateDoesNot) {
 
 TEST(OutputGuard, FitKeepsTheFinestDMinWhenItFits) {
   const Scene s = gridScene(4, 4, 32, 2.0f);
-  const BuildParams p = smallParams(0.0);  // D / 72
+  const BuildParams p = outputSizeParams(0.0);  // D / 72
   const uint64_t full = estimateOutput(planBuild(s, p)).totalBytes;
   const DMinFit fit = fitDMin(s, p, full);
   ASSERT_TRUE(fit.found);
@@ -258,7 +259,7 @@ TEST(OutputGuard, FitWithAnExplicitDMinIsRefused) {
   g.fitBytes = uint64_t(1) << 30;
   TempFile out("tree.mta");
   try {
-    buildMta(gridScene(4, 4, 32, 2.0f), smallParams(2.0), out.path, g);
+    buildMta(gridScene(4, 4, 32, 2.0f), outputSizeParams(2.0), out.path, g);
     FAIL() << "--fit with --d-min was accepted";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("--fit chooses d_min itself"), std::string::npos) << e.what();
@@ -268,7 +269,7 @@ TEST(OutputGuard, FitWithAnExplicitDMinIsRefused) {
 
 TEST(OutputGuard, ABuildWithFitWritesTheChosenTreeAndReportsTheChoice) {
   const Scene s = gridScene(8, 8, 32, 2.0f);
-  const BuildParams p = smallParams(0.0);
+  const BuildParams p = outputSizeParams(0.0);
   const uint64_t full = estimateOutput(planBuild(s, p)).totalBytes;
   OutputGuard g;
   g.fitBytes = full - 1;

@@ -19,7 +19,7 @@ namespace {
 using testing::gridScene;
 using testing::TempFile;
 
-BuildParams params(uint32_t threads = 0) {
+BuildParams pagingParams(uint32_t threads = 0) {
   BuildParams p;
   p.atlasSize = 64;
   p.border = 2;
@@ -43,7 +43,7 @@ void spit(const std::string& path, const std::string& bytes) {
 TEST(PagingFile, RoundTripKeepsTheTreeTheImagesAndEveryChecksum) {
   const Scene s = gridScene(8, 8, 32, 2.0f, false, true);
   TempFile out("tree.mta");
-  buildMta(s, params(), out.path);
+  buildMta(s, pagingParams(), out.path);
   const PagingFile f(out.path);
   const MtaMeta& m = f.meta();
   ASSERT_EQ(m.trees.size(), 2u);  // RGB and RGBA
@@ -82,15 +82,15 @@ TEST(PagingFile, RoundTripKeepsTheTreeTheImagesAndEveryChecksum) {
 TEST(PagingFile, TheBytesDoNotDependOnTheThreadCount) {
   const Scene s = gridScene(6, 6, 32, 3.0f, true);
   TempFile a("a.mta"), b("b.mta");
-  buildMta(s, params(1), a.path);
-  buildMta(s, params(2), b.path);
+  buildMta(s, pagingParams(1), a.path);
+  buildMta(s, pagingParams(2), b.path);
   EXPECT_EQ(slurp(a.path), slurp(b.path));
 }
 
 TEST(PagingFile, SecondLayerSharesTheParameterization) {
   const Scene s = gridScene(3, 3, 32, 1.0f, true);
   TempFile out("layers.mta");
-  BuildParams p = params();
+  BuildParams p = pagingParams();
   p.dMin = 1000.0;  // one leaf
   buildMta(s, p, out.path);
   const PagingFile f(out.path);
@@ -119,7 +119,7 @@ TEST(AtlasImage, DownsamplingIsTheBoxFilterOfTheMipChain) {
 TEST(PagingFile, CorruptionIsAClearErrorNeverACrash) {
   const Scene s = gridScene(4, 4);
   TempFile out("c.mta"), bad("bad.mta");
-  buildMta(s, params(), out.path);
+  buildMta(s, pagingParams(), out.path);
   const std::string good = slurp(out.path);
   auto expectError = [&](const std::string& bytes, const std::string& what, bool onBlocks) {
     spit(bad.path, bytes);
@@ -177,8 +177,8 @@ TEST(PagingFile, CorruptionIsAClearErrorNeverACrash) {
 
 TEST(PagingFile, MissingOutputDirectoryLeavesNothingBehind) {
   const Scene s = gridScene(2, 2);
-  EXPECT_THROW(buildMta(s, params(), "/nonexistent_dir_mta/x.mta"), Error);
-  BuildParams p = params();
+  EXPECT_THROW(buildMta(s, pagingParams(), "/nonexistent_dir_mta/x.mta"), Error);
+  BuildParams p = pagingParams();
   p.atlasSize = 100;
   TempFile out("p.mta");
   EXPECT_THROW(buildMta(s, p, out.path), Error);

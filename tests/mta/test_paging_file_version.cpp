@@ -22,18 +22,8 @@ namespace {
 using testing::TempFile;
 
 using testing::errorOf;
+using testing::expectRefused;
 using testing::good;
-
-// Opens `good` with `edit` applied and expects an Error that names the file, `field` and `reason`.
-void expectRefused(const std::function<void(MtaMeta&)>& edit, const std::string& field, const std::string& reason) {
-  TempFile bad("bad.mta");
-  testing::rewriteMetadata(good().file.path, bad.path, edit);
-  const std::string m = errorOf(bad.path);
-  ASSERT_FALSE(m.empty()) << "accepted; expected an error about " << field;
-  EXPECT_EQ(m.rfind(bad.path + ": ", 0), 0u) << m;
-  EXPECT_NE(m.find(": " + field + ": "), std::string::npos) << m;
-  EXPECT_NE(m.find(reason), std::string::npos) << m;
-}
 
 TEST(PagingFileVersion, AVersion1FileIsRefusedWithAMessageToRebuildIt) {
   TempFile old("old.mta");

@@ -44,7 +44,7 @@ std::vector<Camera> path() {
   return cams;
 }
 
-RendererOptions options(uint64_t capacity, LoadBudget budget) {
+RendererOptions runtimeOptions(uint64_t capacity, LoadBudget budget) {
   RendererOptions o;
   o.width = 128;
   o.height = 96;
@@ -60,7 +60,7 @@ RendererOptions everythingResident() {
   LoadBudget b;
   b.kind = LoadBudget::Kind::Blocks;
   b.perFrame = UINT64_MAX;
-  RendererOptions o = options(uint64_t(1) << 32, b);
+  RendererOptions o = runtimeOptions(uint64_t(1) << 32, b);
   o.residency.maxQueue = UINT32_MAX;
   return o;
 }
@@ -83,7 +83,7 @@ TEST(Residency, CapacityIsNeverExceededAndTheRootAtlasStaysResident) {
   LoadBudget b;
   b.kind = LoadBudget::Kind::Blocks;
   b.perFrame = 2;
-  TreeRenderer r(f, options(atlasBytes() * 7, b));
+  TreeRenderer r(f, runtimeOptions(atlasBytes() * 7, b));
   const uint32_t root = f.meta().trees[0].atlasBlocks[0];
   uint64_t evicted = 0;
   for (const Camera& c : path()) {
@@ -103,7 +103,7 @@ TEST(Residency, DecodedBytesResidentHoldEveryChainTheFrameUploadsAndOnlyThoseOnT
   b.kind = LoadBudget::Kind::Blocks;
   b.perFrame = 2;
   const uint64_t rawAtlas = uint64_t(f.meta().params.atlasSize) * f.meta().params.atlasSize * 3;
-  TreeRenderer r(f, options(rawAtlas * 7, b));
+  TreeRenderer r(f, runtimeOptions(rawAtlas * 7, b));
   bool first = true;
   for (const Camera& c : path()) {
     const FrameResult fr = r.renderFrame(c);
@@ -153,7 +153,7 @@ TEST(Residency, TheBackgroundLoaderKeepsTheSameInvariants) {
   LoadBudget b;
   b.kind = LoadBudget::Kind::Time;
   b.slotMs = 2.0;
-  TreeRenderer r(f, options(atlasBytes() * 7, b));
+  TreeRenderer r(f, runtimeOptions(atlasBytes() * 7, b));
   const uint32_t root = f.meta().trees[0].atlasBlocks[0];
   uint64_t loaded = 0;
   for (const Camera& c : path()) {
@@ -192,7 +192,7 @@ TEST(Residency, CapacityAndBytesResidentCountCompressedBlockBytes) {
   LoadBudget b;
   b.kind = LoadBudget::Kind::Blocks;
   b.perFrame = 1;
-  TreeRenderer r(f, options(atlasBytes(), b));
+  TreeRenderer r(f, runtimeOptions(atlasBytes(), b));
   const FrameResult fr = r.renderFrame(path().front());
   EXPECT_EQ(fr.capacityBytes, atlasBytes());
   EXPECT_EQ(fr.bytesResident, atlasBytes());
@@ -278,7 +278,7 @@ TEST(TreeRenderer, WithOnlyTheRootInMemoryEverythingIsDrawnWithTheRootAtlas) {
   LoadBudget b;
   b.kind = LoadBudget::Kind::Blocks;
   b.perFrame = 1;
-  TreeRenderer r(f, options(atlasBytes(), b));  // room for the root alone: nothing can ever be loaded
+  TreeRenderer r(f, runtimeOptions(atlasBytes(), b));  // room for the root alone: nothing can ever be loaded
   const Camera close = path()[23];
   const FrameResult fr = r.renderFrame(close);
   EXPECT_EQ(fr.plan.atlasNodes, 1u);
@@ -308,7 +308,7 @@ TEST(TreeRenderer, TheThreeRunsDrawExactlyTheSameTriangles) {
   LoadBudget b;
   b.kind = LoadBudget::Kind::Blocks;
   b.perFrame = 2;
-  RendererOptions atlas = options(atlasBytes() * 8, b), orig = atlas, dummy = atlas;
+  RendererOptions atlas = runtimeOptions(atlasBytes() * 8, b), orig = atlas, dummy = atlas;
   orig.mode = RenderMode::Original;
   dummy.mode = RenderMode::Dummy;
   TreeRenderer ra(f, atlas), ro(f, orig), rd(f, dummy);
@@ -322,7 +322,7 @@ TEST(TreeRenderer, TheThreeRunsDrawExactlyTheSameTriangles) {
 }
 
 std::vector<std::string> imageHashes(int threads, LoadBudget b) {
-  RendererOptions o = options(atlasBytes() * 8, b);
+  RendererOptions o = runtimeOptions(atlasBytes() * 8, b);
   o.threads = threads;
   TreeRenderer r(*fixture().tree, o);
   std::vector<std::string> h;
@@ -402,7 +402,7 @@ TEST(TexelAnalysis, AFrameDrawnWithTheRootAloneReportsViolationsUpClose) {
   LoadBudget b;
   b.kind = LoadBudget::Kind::Blocks;
   b.perFrame = 1;
-  TreeRenderer r(f, options(atlasBytes(), b));
+  TreeRenderer r(f, runtimeOptions(atlasBytes(), b));
   const Camera close = path()[23];
   const FrameResult fr = r.renderFrame(close);
   const TexelFrame t = analyzeTexels(r, close, fr, r.triangleIds(close, fr.plan), f.meta().params.tau);

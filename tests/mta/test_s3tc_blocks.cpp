@@ -19,7 +19,7 @@ namespace {
 using testing::gridScene;
 using testing::TempFile;
 
-BuildParams params(BlockEncoding e, uint32_t threads = 2) {
+BuildParams s3tcParams(BlockEncoding e, uint32_t threads = 2) {
   BuildParams p;
   p.atlasSize = 64;
   p.border = 2;
@@ -38,7 +38,7 @@ TEST(S3tcBlocks, TheSizeEstimateIsTheFilesSizeToTheByteForRawAndForS3tc) {
   uint64_t sizes[2] = {};
   for (BlockEncoding e : {BlockEncoding::Raw, BlockEncoding::S3tc}) {
     SCOPED_TRACE(blockEncodingName(e));
-    const BuildParams p = params(e);
+    const BuildParams p = s3tcParams(e);
     const OutputEstimate planned = estimateOutput(planBuild(scene(), p));
     TempFile out("tree.mta");
     buildMta(scene(), p, out.path);
@@ -57,7 +57,7 @@ TEST(S3tcBlocks, TheSizeEstimateIsTheFilesSizeToTheByteForRawAndForS3tc) {
 // of 16; an image's chain is its levels' blocks.
 TEST(S3tcBlocks, AtlasAndImageBlocksHoldWholeMipChainsOfBc1ForRgbAndBc3ForRgba) {
   TempFile out("tree.mta");
-  buildMta(scene(), params(BlockEncoding::S3tc), out.path);
+  buildMta(scene(), s3tcParams(BlockEncoding::S3tc), out.path);
   const PagingFile f(out.path);
   const MtaMeta& m = f.meta();
   ASSERT_EQ(m.trees.size(), 2u);
@@ -87,7 +87,7 @@ TEST(S3tcBlocks, TheFileHasTheSameBytesAtOneTwoAndSevenThreads) {
   std::vector<uint8_t> first;
   for (uint32_t threads : {1u, 2u, 7u}) {
     TempFile out("tree.mta");
-    buildMta(scene(), params(BlockEncoding::S3tc, threads), out.path);
+    buildMta(scene(), s3tcParams(BlockEncoding::S3tc, threads), out.path);
     const std::vector<uint8_t> bytes = testing::readBytes(out.path);
     if (first.empty()) first = bytes;
     else EXPECT_TRUE(bytes == first) << threads << " threads";
@@ -99,8 +99,8 @@ TEST(S3tcBlocks, TheFileHasTheSameBytesAtOneTwoAndSevenThreads) {
 // whose meshes have no layer-1 texture is white everywhere.
 TEST(S3tcBlocks, AnAtlasDecodesToLevelZeroWithinTheEncodersErrorAndWhiteStaysWhite) {
   TempFile raw("raw.mta"), s3tc("s3tc.mta");
-  buildMta(scene(), params(BlockEncoding::Raw), raw.path);
-  buildMta(scene(), params(BlockEncoding::S3tc), s3tc.path);
+  buildMta(scene(), s3tcParams(BlockEncoding::Raw), raw.path);
+  buildMta(scene(), s3tcParams(BlockEncoding::S3tc), s3tc.path);
   const PagingFile a(raw.path), b(s3tc.path);
   const std::vector<uint8_t> ra = a.readAtlas(0, 0, 0), sa = b.readAtlas(0, 0, 0);
   ASSERT_EQ(ra.size(), sa.size());

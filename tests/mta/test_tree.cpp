@@ -57,7 +57,7 @@ TEST(Split, SmallSetsNeverProduceEmptyChildrenAndZeroAreaFallsBackToCounts) {
   EXPECT_FALSE(groups[1].empty());
 }
 
-BuildParams smallParams() {
+BuildParams treeParams() {
   BuildParams p;
   p.atlasSize = 64;
   p.border = 2;
@@ -73,7 +73,7 @@ TEST(Critical, FewCriticalTrianglesAreSplitUntilNoneIsCritical) {
     s.geometry.positions[k].x *= 40.0f;
     s.geometry.positions[k].y *= 40.0f;
   }
-  BuildParams p = smallParams();
+  BuildParams p = treeParams();
   p.criticalThreshold = 0.5;
   CriticalReport rep;
   const double d = 10.0;
@@ -95,7 +95,7 @@ TEST(Critical, FewCriticalTrianglesAreSplitUntilNoneIsCritical) {
 
 TEST(Critical, ManyCriticalTrianglesRaiseDMinToTheThreshold) {
   const Scene s = gridScene(4, 4);
-  BuildParams p = smallParams();
+  BuildParams p = treeParams();
   p.criticalThreshold = 0.25;
   CriticalReport rep;
   const Geometry g = handleCriticalTriangles(s, p, 0.05, rep);  // every triangle is critical at 5 cm
@@ -168,7 +168,7 @@ void checkTree(const Scene& s, const Tree& tree, const BuildParams& p) {
 
 TEST(Tree, EveryNodeIsAContiguousRangeAndTextureMatricesRoundTripInADeepTree) {
   const Scene s = gridScene(32, 32, 32, 2.0f);
-  BuildParams p = smallParams();
+  BuildParams p = treeParams();
   CriticalReport rep;
   const double d = 3.0;
   const Geometry g = handleCriticalTriangles(s, p, d, rep);
@@ -184,7 +184,7 @@ TEST(Tree, EveryNodeIsAContiguousRangeAndTextureMatricesRoundTripInADeepTree) {
 
 TEST(Tree, ASceneThatFitsOneAtlasIsASingleLeafAndRepeatOffsetsDoNotGrowTheArea) {
   const Scene s = gridScene(2, 2, 32, 1.0f);
-  BuildParams p = smallParams();
+  BuildParams p = treeParams();
   const auto tris = all(s.geometry);
   const Tree tree = buildTree(s, s.geometry, tris, 0, p, 1000.0);
   ASSERT_EQ(tree.nodes.size(), 1u);

@@ -13,8 +13,7 @@
 #include "tools/scenes/builder.h"
 #include "tools/scenes/scenes.h"
 
-using namespace tessera;
-using namespace tessera::scenes;
+namespace tessera::scenes {
 
 namespace {
 
@@ -101,9 +100,11 @@ bool isColour(const uint8_t* p, const std::array<uint8_t, 4>& c) {
   return p[0] == c[0] && p[1] == c[1] && p[2] == c[2] && p[3] == c[3];
 }
 
-class AlphaTest : public ::testing::TestWithParam<bool> {};
-
 }  // namespace
+
+// Outside the anonymous namespace: the TEST_P classes derive from it, and in a unity batch (not the main
+// file) GCC warns about a class with a base of internal linkage (-Wsubobject-linkage).
+class AlphaTest : public ::testing::TestWithParam<bool> {};
 
 TEST_P(AlphaTest, AMaskCutoffOnATexelsExactAlphaForksOnlyThatColumnIntoWrittenAndNotWritten) {
   // Pixel column x samples texel column x at its centre: alpha 16 x / 255, its neighbours 16 LSB away.
@@ -199,3 +200,5 @@ TEST(Materials, TheBaselineAndTheBatchedProgramGiveTheSameColoursForTheSameMater
   EXPECT_GT(background, 0u);
   EXPECT_EQ(r.stats.fragments_discarded, background);
 }
+
+}  // namespace tessera::scenes

@@ -10,7 +10,7 @@
 #include "tests/raster/render_helpers.h"
 #include "tools/scenes/scenes.h"
 
-using namespace tessera;
+namespace tessera {
 
 TEST(AtlasCaptureTab, OneBatchedDrawCapturesEveryRegionAsThePerObjectDrawsDo) {
   // The same objects, the same textures (as layers of one array), the same records: the batched
@@ -59,3 +59,5 @@ TEST(AtlasCapture, ObjectTexelsHaveAlphaOneAndCoveredDepthWhereEmptyTexelsKeepTh
   EXPECT_GT(covered, 0u);
   EXPECT_LE(covered, size_t(b.stats().pixels_written));  // a pixel may be written more than once
 }
+
+}  // namespace tessera

@@ -11,11 +11,11 @@
 #include "tools/scenes/scenes.h"
 #include "tools/scenes/sweep_scenes.h"
 
-using namespace tessera;
+namespace tessera {
 
 namespace {
 
-struct Frame {
+struct NamedFrame {
   std::string name;
   CommandList list;
 };
@@ -32,7 +32,7 @@ TEST(BackendReuse, EveryFrameOfASequenceHasTheBytesAndCountersOfANewBackend) {
   // Frames that grow and shrink every reused array: many triangles (several setup chunks and blocks),
   // other target sizes (bin count), several draws per frame, and the big frame again at the end so
   // that spare blocks holding earlier triangles are reused.
-  std::vector<Frame> frames;
+  std::vector<NamedFrame> frames;
   frames.push_back({"tiny_tris 20000", scenes::buildTinyTris(320, 240, 20000)});
   frames.push_back({"city_block", scenes::build("city_block", 160, 120)});
   frames.push_back({"tiny_tris 700", scenes::buildTinyTris(96, 64, 700)});
@@ -41,7 +41,7 @@ TEST(BackendReuse, EveryFrameOfASequenceHasTheBytesAndCountersOfANewBackend) {
   frames.push_back({"clip_planes", scenes::build("clip_planes", 128, 96)});
   for (int threads : {1, 3}) {
     CpuBackend reused(RenderOptions{threads});
-    for (const Frame& f : frames) {
+    for (const NamedFrame& f : frames) {
       reused.execute(f.list, f.name);
       const tessera::testing::Rendered fresh = tessera::testing::renderList(f.list, threads);
       const std::vector<PresentedImage> presented = reused.presented();
@@ -54,3 +54,5 @@ TEST(BackendReuse, EveryFrameOfASequenceHasTheBytesAndCountersOfANewBackend) {
     }
   }
 }
+
+}  // namespace tessera

@@ -17,8 +17,7 @@
 #include "tools/scenes/builder.h"
 #include "tools/scenes/scenes.h"
 
-using namespace tessera;
-using namespace tessera::scenes;
+namespace tessera::scenes {
 
 namespace {
 
@@ -264,3 +263,5 @@ TEST(FragDepth, ProvenanceModeFindsNoDepthOrDiscardFreedomInSpritesFromExactTexe
   for (size_t i = 0; i < t.prov->classes[0].size(); ++i)
     EXPECT_EQ(t.prov->classes[0][i] & discrete, 0) << i % 64 << "," << i / 64;
 }
+
+}  // namespace tessera::scenes

@@ -16,7 +16,7 @@
 #include "tools/scenes/scene_goldens.h"
 #include "tools/scenes/scenes.h"
 
-using namespace tessera;
+namespace tessera {
 
 namespace {
 
@@ -95,3 +95,5 @@ INSTANTIATE_TEST_SUITE_P(Manifest, GoldenImage, ::testing::ValuesIn(testNames())
     if (c == '.') c = '_';
   return n;
 });
+
+}  // namespace tessera

@@ -5,21 +5,14 @@
 // so; an operand reordered inside a step would change both and is caught by the goldens instead.
 #include <gtest/gtest.h>
 
-#include <cstring>
+#include <bit>
 #include <random>
 
 #include "raster/rast.h"
 
-using namespace tessera;
-using namespace tessera::detail;
+namespace tessera::detail {
 
 namespace {
-
-uint32_t bits(float f) {
-  uint32_t u;
-  std::memcpy(&u, &f, sizeof u);
-  return u;
-}
 
 // A triangle with random per-vertex 1/w, depth and varyings over wide ranges (perspective with
 // w from 1e-3 to 1e4, varyings up to +-1e6 and tiny ones), and edge values of pixels inside,
@@ -59,11 +52,14 @@ TEST(InterpolateQuad, DepthAndVaryingsAreTheBitsOfThePerPixelReferenceForRandomT
     for (int p = 0; p < 4; ++p) {
       float ref[kMaxVaryings];
       const float zr = interpolatePixel(t, kMaxVaryings, e[p], ref);
-      ASSERT_EQ(bits(z[p]), bits(zr)) << "trial " << trial << " pixel " << p;
+      ASSERT_EQ(std::bit_cast<uint32_t>(z[p]), std::bit_cast<uint32_t>(zr)) << "trial " << trial << " pixel " << p;
       for (int k = 0; k < kMaxVaryings; ++k)
-        ASSERT_EQ(bits(var[p][k]), bits(ref[k])) << "trial " << trial << " pixel " << p << " varying " << k;
+        ASSERT_EQ(std::bit_cast<uint32_t>(var[p][k]), std::bit_cast<uint32_t>(ref[k]))
+            << "trial " << trial << " pixel " << p << " varying " << k;
       ++compared;
     }
   }
   EXPECT_EQ(compared, 80000);
 }
+
+}  // namespace tessera::detail

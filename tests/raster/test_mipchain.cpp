@@ -7,20 +7,13 @@
 #include <vector>
 
 #include "raster/texture.h"
+#include "tests/raster/texture_test_util.h"
 
 namespace tessera {
 namespace {
 
-TextureDesc desc2D(Format f, uint32_t w, uint32_t h, uint32_t levels, uint32_t layers = 1) {
-  TextureDesc d;
-  d.kind = layers > 1 ? TextureKind::Tex2DArray : TextureKind::Tex2D;
-  d.format = f;
-  d.width = w;
-  d.height = h;
-  d.levels = levels;
-  d.layers = layers;
-  return d;
-}
+using testing::desc2D;
+using testing::setF32;
 
 std::vector<uint8_t> texelU8(const TextureData& t, uint32_t level, uint32_t layer, uint32_t x, uint32_t y) {
   const uint8_t* p = t.texel(level, layer, x, y);
@@ -30,9 +23,6 @@ std::vector<float> texelF32(const TextureData& t, uint32_t level, uint32_t layer
   std::vector<float> v(size_t(channelCount(t.desc.format)));
   std::memcpy(v.data(), t.texel(level, layer, x, y), v.size() * sizeof(float));
   return v;
-}
-void setF32(TextureData& t, uint32_t level, uint32_t layer, uint32_t x, uint32_t y, std::initializer_list<float> v) {
-  std::memcpy(t.texel(level, layer, x, y), v.begin(), v.size() * sizeof(float));
 }
 uint32_t texelU32(const TextureData& t, uint32_t level, uint32_t x, uint32_t y) {
   uint32_t v;

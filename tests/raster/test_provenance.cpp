@@ -22,8 +22,7 @@
 #include "tools/scenes/builder.h"
 #include "tools/scenes/scenes.h"
 
-using namespace tessera;
-using namespace tessera::scenes;
+namespace tessera::scenes {
 
 namespace {
 
@@ -594,3 +593,5 @@ TEST(ProvenanceLookups, TwoLookupsWithSeveralCandidatesInOneFragmentAreCountedFo
   sp.active = false;
   sp.bound = SampleBound::Value;
 }
+
+}  // namespace tessera::scenes

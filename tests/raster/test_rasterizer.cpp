@@ -12,8 +12,7 @@
 #include "tools/scenes/builder.h"
 #include "tools/scenes/scenes.h"
 
-using namespace tessera;
-using namespace tessera::scenes;
+namespace tessera::scenes {
 using tessera::testing::renderList;
 
 namespace {
@@ -352,3 +351,5 @@ INSTANTIATE_TEST_SUITE_P(AllScenes, ThreadInvariance, ::testing::ValuesIn([] {
                            return names;
                          }()),
                          [](const auto& param) { return param.param; });
+
+}  // namespace tessera::scenes

@@ -4,6 +4,7 @@
 // rely on both; a difference would change output bytes only on rare inputs that no golden may hold.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cstdint>
 #include <cstring>
 #include <random>
@@ -11,15 +12,9 @@
 #include "raster/round.h"
 #include "raster/setup.h"
 
-using namespace tessera;
+namespace tessera {
 
 namespace {
-
-uint32_t bits(float f) {
-  uint32_t u;
-  std::memcpy(&u, &f, sizeof u);
-  return u;
-}
 
 // The division the sampler did before; volatile keeps the compiler from turning it into anything else.
 float divided(uint32_t acc) {
@@ -59,7 +54,8 @@ TEST(Round, HalfEvenNearRoundsUnormChannelsOfEveryFloatInTheUnitInterval) {
 }
 
 TEST(Round, UnormReciprocalGivesTheDivisionsFloatForEverySumBelow2To24) {
-  for (uint32_t acc = 0; acc < (1u << 24); ++acc) ASSERT_EQ(bits(multiplied(acc)), bits(divided(acc))) << acc;
+  for (uint32_t acc = 0; acc < (1u << 24); ++acc)
+    ASSERT_EQ(std::bit_cast<uint32_t>(multiplied(acc)), std::bit_cast<uint32_t>(divided(acc))) << acc;
 }
 
 TEST(Round, UnormReciprocalGivesTheDivisionsFloatAtEveryMultipleOf255AndItsNeighbours) {
@@ -69,7 +65,8 @@ TEST(Round, UnormReciprocalGivesTheDivisionsFloatAtEveryMultipleOf255AndItsNeigh
     const uint64_t m = 255 * n;
     for (uint64_t acc : {m, m + 1, m - 1}) {
       if (acc <= uint64_t(kUnormDenominator)) {
-        ASSERT_EQ(bits(multiplied(uint32_t(acc))), bits(divided(uint32_t(acc)))) << acc;
+        ASSERT_EQ(std::bit_cast<uint32_t>(multiplied(uint32_t(acc))), std::bit_cast<uint32_t>(divided(uint32_t(acc))))
+            << acc;
       }
     }
   }
@@ -79,6 +76,8 @@ TEST(Round, UnormReciprocalGivesTheDivisionsFloatForRandomSums) {
   std::mt19937_64 rng(2026);
   for (int i = 0; i < 20000000; ++i) {
     const uint32_t acc = uint32_t(rng() % (uint64_t(kUnormDenominator) + 1));
-    ASSERT_EQ(bits(multiplied(acc)), bits(divided(acc))) << acc;
+    ASSERT_EQ(std::bit_cast<uint32_t>(multiplied(acc)), std::bit_cast<uint32_t>(divided(acc))) << acc;
   }
 }
+
+}  // namespace tessera

@@ -12,26 +12,16 @@
 
 #include "raster/sample.h"
 #include "raster/sample_detail.h"
+#include "tests/raster/texture_test_util.h"
 
 namespace tessera {
 namespace {
 
-TextureDesc desc2D(Format f, uint32_t w, uint32_t h, uint32_t levels = 1, uint32_t layers = 1) {
-  TextureDesc d;
-  d.kind = layers > 1 ? TextureKind::Tex2DArray : TextureKind::Tex2D;
-  d.format = f;
-  d.width = w;
-  d.height = h;
-  d.levels = levels;
-  d.layers = layers;
-  return d;
-}
+using testing::desc2D;
+using testing::setF32;
 
 void setU8(TextureData& t, uint32_t level, uint32_t layer, uint32_t x, uint32_t y, std::initializer_list<uint8_t> v) {
   std::copy(v.begin(), v.end(), t.texel(level, layer, x, y));
-}
-void setF32(TextureData& t, uint32_t level, uint32_t layer, uint32_t x, uint32_t y, std::initializer_list<float> v) {
-  std::memcpy(t.texel(level, layer, x, y), v.begin(), v.size() * sizeof(float));
 }
 void setU32(TextureData& t, uint32_t level, uint32_t layer, uint32_t x, uint32_t y, uint32_t v) {
   std::memcpy(t.texel(level, layer, x, y), &v, sizeof v);

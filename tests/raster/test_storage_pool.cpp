@@ -9,7 +9,7 @@
 #include "raster/storage_pool.h"
 #include "tests/raster/render_helpers.h"
 
-using namespace tessera;
+namespace tessera {
 
 TEST(StoragePool, TakenStorageIsZeroedEvenWhenItsLastOwnerFilledIt) {
   StoragePool pool;
@@ -66,3 +66,5 @@ TEST(StoragePool, ATargetNeverClearedShowsZerosAfterAFrameThatFilledTheSameSized
   EXPECT_TRUE(std::all_of(t.levels[0].begin(), t.levels[0].end(), [](uint8_t b) { return b == 0; }));
   EXPECT_EQ(imageSha256(t, 0, 0), tessera::testing::renderList(frame(false), 2).hashes.at(0));
 }
+
+}  // namespace tessera

@@ -12,8 +12,7 @@
 #include "tests/raster/render_helpers.h"
 #include "tools/scenes/builder.h"
 
-using namespace tessera;
-using namespace tessera::scenes;
+namespace tessera::scenes {
 
 namespace {
 
@@ -96,3 +95,5 @@ TEST(TabRender, IndexJustBelowAnIntegerSelectsTheRightEntry) {
   expectEntryThree(false);
   expectEntryThree(true);
 }
+
+}  // namespace tessera::scenes

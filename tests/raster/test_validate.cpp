@@ -7,9 +7,12 @@
 
 #include "raster/program.h"
 #include "raster/validate.h"
+#include "tests/raster/validate_test_util.h"
 
 namespace tessera {
 namespace {
+
+using testing::dump;
 
 template <class T>
 std::span<const uint8_t> asBytes(const std::vector<T>& v) {
@@ -79,12 +82,6 @@ struct Frame {
   }
   size_t last() const { return l.commands().size() - 1; }
 };
-
-std::string dump(const std::vector<Diagnostic>& diags) {
-  std::string s;
-  for (const auto& d : diags) s += "\n  command " + std::to_string(d.command) + ": " + d.message;
-  return s;
-}
 
 // Exactly one diagnostic, on the last command, containing `text`.
 void expectOnlyOnLast(const CommandList& l, std::string_view text) {

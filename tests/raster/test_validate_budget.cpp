@@ -8,15 +8,12 @@
 #include "base/error.h"
 #include "raster/cpu_backend.h"
 #include "raster/validate.h"
+#include "tests/raster/validate_test_util.h"
 
 namespace tessera {
 namespace {
 
-std::string dump(const std::vector<Diagnostic>& diags) {
-  std::string s;
-  for (const auto& d : diags) s += "\n  command " + std::to_string(d.command) + ": " + d.message;
-  return s;
-}
+using testing::dump;
 
 ResourceLimits budget(uint64_t bytes) {
   ResourceLimits l;

@@ -15,7 +15,7 @@
 namespace tessera::rtta {
 namespace {
 
-constexpr uint32_t kW = 128, kH = 96;
+constexpr uint32_t kCaptureW = 128, kCaptureH = 96;
 
 RttaView view() {
   mta::Camera c;
@@ -24,10 +24,10 @@ RttaView view() {
   c.nearPlane = 0.5;
   c.farPlane = 40.0;
   RttaView v;
-  v.mvp = mta::viewProjection(c, kW, kH);
+  v.mvp = mta::viewProjection(c, kCaptureW, kCaptureH);
   v.eye = c.eye;
-  v.width = kW;
-  v.height = kH;
+  v.width = kCaptureW;
+  v.height = kCaptureH;
   return v;
 }
 
@@ -52,7 +52,8 @@ TEST(RttaCapture, EachRegionEqualsItsObjectRenderedAloneShiftedWhereNoVertexRoun
   const auto specs = testing::fiveBoxes();
   const RttaScene scene = testing::boxScene(specs, 4);
   const Rendered atlas = run(scene, {.mode = Mode::Rtta, .captureOnly = true});
-  const ShiftExplanation why = explainShift(scene, atlas.frame.records, view().mvp, {0, 0, int(kW), int(kH)}, atlas.frame.atlas);
+  const ShiftExplanation why =
+      explainShift(scene, atlas.frame.records, view().mvp, {0, 0, int(kCaptureW), int(kCaptureH)}, atlas.frame.atlas);
   int compared = 0, covered = 0, differing = 0, unexplained = 0, exactZone = 0;
   for (uint32_t k = 0; k < specs.size(); ++k) {
     const Record& r = atlas.frame.records[k];
@@ -62,7 +63,7 @@ TEST(RttaCapture, EachRegionEqualsItsObjectRenderedAloneShiftedWhereNoVertexRoun
       for (int x = r.viewport.x0; x < r.viewport.x1; ++x) {
         const int ax = x + r.atlas.x0 - r.viewport.x0, ay = y + r.atlas.y0 - r.viewport.y0;
         const uint8_t* a = pixel(atlas, atlas.frame.captureColor, uint32_t(r.layer), ax, ay);
-        const bool onScreen = x >= 0 && y >= 0 && x < int(kW) && y < int(kH);
+        const bool onScreen = x >= 0 && y >= 0 && x < int(kCaptureW) && y < int(kCaptureH);
         if (!onScreen) {
           EXPECT_EQ(a[3], 0) << "a border texel off the screen was written";
           continue;
@@ -75,7 +76,7 @@ TEST(RttaCapture, EachRegionEqualsItsObjectRenderedAloneShiftedWhereNoVertexRoun
         std::memcpy(z, pixel(atlas, atlas.frame.captureDepth, uint32_t(r.layer), ax, ay), 8);
         const bool same = depth < 1.0f ? std::memcmp(a, s, 4) == 0 && z[0] == depth && z[1] == 1.0f : a[3] == 0 && z[1] == 0.0f;
         covered += depth < 1.0f;
-        const bool explained = why.mask[size_t(y) * kW + size_t(x)] != 0;
+        const bool explained = why.mask[size_t(y) * kCaptureW + size_t(x)] != 0;
         exactZone += !explained;
         if (!same) ++differing, unexplained += !explained;
         EXPECT_TRUE(same || explained) << "object " << k << " pixel " << x << "," << y << ": atlas " << int(a[0]) << ","
@@ -117,8 +118,9 @@ TEST(RttaCapture, NoFragmentLeavesItsRegionAndBordersKeepTheClearAlpha) {
 
 uint64_t differingPixels(const Rendered& a, ResourceId ta, const Rendered& b, ResourceId tb) {
   uint64_t n = 0;
-  for (uint32_t y = 0; y < kH; ++y)
-    for (uint32_t x = 0; x < kW; ++x) n += std::memcmp(pixel(a, ta, 0, int(x), int(y)), pixel(b, tb, 0, int(x), int(y)), 4) != 0;
+  for (uint32_t y = 0; y < kCaptureH; ++y)
+    for (uint32_t x = 0; x < kCaptureW; ++x)
+      n += std::memcmp(pixel(a, ta, 0, int(x), int(y)), pixel(b, tb, 0, int(x), int(y)), 4) != 0;
   return n;
 }
 
@@ -131,17 +133,18 @@ TEST(RttaComposite, DepthSpritesReproduceThePlainRendering) {
   // its composite is the plain rendering, every pixel.
   EXPECT_EQ(differingPixels(std_, std_.frame.screen, rtt, rtt.frame.screen), 0u);
   // RTTA's composite differs only where its capture may (shift_explain.h).
-  const ShiftExplanation why = explainShift(scene, rtta.frame.records, view().mvp, {0, 0, int(kW), int(kH)}, rtta.frame.atlas);
+  const ShiftExplanation why =
+      explainShift(scene, rtta.frame.records, view().mvp, {0, 0, int(kCaptureW), int(kCaptureH)}, rtta.frame.atlas);
   uint64_t differing = 0, unexplained = 0;
-  for (uint32_t y = 0; y < kH; ++y)
-    for (uint32_t x = 0; x < kW; ++x)
+  for (uint32_t y = 0; y < kCaptureH; ++y)
+    for (uint32_t x = 0; x < kCaptureW; ++x)
       if (std::memcmp(pixel(std_, std_.frame.screen, 0, int(x), int(y)), pixel(rtta, rtta.frame.screen, 0, int(x), int(y)), 4)) {
         ++differing;
-        unexplained += why.mask[size_t(y) * kW + x] == 0;
+        unexplained += why.mask[size_t(y) * kCaptureW + x] == 0;
       }
   EXPECT_EQ(unexplained, 0u) << differing << " differing pixels";
   std::printf("[ rtta ] depth composite vs STD: %llu of %u pixels differ, all where a displaced vertex rounds or clipping cuts\n",
-              (unsigned long long)differing, kW * kH);
+              (unsigned long long)differing, kCaptureW * kCaptureH);
 }
 
 TEST(RttaComposite, TransparentAndGhostedDifferFromThePlainRenderingOnlyWhereObjectsAre) {
@@ -150,8 +153,8 @@ TEST(RttaComposite, TransparentAndGhostedDifferFromThePlainRenderingOnlyWhereObj
   for (Composite c : {Composite::Transparent, Composite::Ghosted}) {
     const Rendered comp = run(scene, {.mode = Mode::Rtta, .composite = c});
     uint64_t background = 0;
-    for (uint32_t y = 0; y < kH; ++y)
-      for (uint32_t x = 0; x < kW; ++x) {
+    for (uint32_t y = 0; y < kCaptureH; ++y)
+      for (uint32_t x = 0; x < kCaptureW; ++x) {
         float z;
         std::memcpy(&z, pixel(std_, std_.frame.screenDepth, 0, int(x), int(y)), 4);
         if (z < 1.0f) continue;
@@ -215,7 +218,7 @@ TEST(RttaFrames, RttTakesOnePassPerObjectAndRttaOne) {
   EXPECT_EQ(countCommands(rtta.list).texture_binds, 4u + 1u + 2u);
   EXPECT_EQ(targets(rtt.list), 5 + 1);   // one per object, then the screen
   EXPECT_EQ(targets(rtta.list), 1 + 1);  // the atlas, then the screen
-  EXPECT_EQ(rtt.targetBytes, uint64_t(kW) * kH * 5 * (4 + 8 + 4));
+  EXPECT_EQ(rtt.targetBytes, uint64_t(kCaptureW) * kCaptureH * 5 * (4 + 8 + 4));
   EXPECT_EQ(rtta.atlas.width, 256);      // smallest power of two >= 128 + 2
   EXPECT_EQ(rtta.targetBytes, uint64_t(256) * 128 * uint64_t(rtta.atlas.layers) * (4 + 8 + 4));
 }

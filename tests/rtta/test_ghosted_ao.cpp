@@ -15,7 +15,7 @@
 #include "rtta/rtta_record.h"
 #include "tests/rtta/box_scene.h"
 
-using namespace tessera;
+namespace tessera {
 
 namespace {
 
@@ -151,3 +151,5 @@ TEST(RttaGhostedAo, ABorderNarrowerThanTheKernelIsRefusedBecauseItWouldReadANeig
   const rtta::RttaFrame f = rtta::recordRttaFrame(s, v, o);
   EXPECT_FALSE(f.important.empty());
 }
+
+}  // namespace tessera

@@ -10,7 +10,7 @@
 namespace tessera::rtta {
 namespace {
 
-constexpr int kW = 160, kH = 120;
+constexpr int kParamW = 160, kParamH = 120;
 
 mta::Camera camera() {
   mta::Camera c;
@@ -42,15 +42,15 @@ std::vector<Box3> scatter(std::vector<std::vector<glm::vec3>>& tris) {
 TEST(RttaParameterization, CulledObjectsHaveNoVisiblePixelAndEveryCoveredPixelLiesInItsRegion) {
   std::vector<std::vector<glm::vec3>> tris;
   const std::vector<Box3> boxes = scatter(tris);
-  const glm::mat4 vpm = mta::viewProjection(camera(), kW, kH);
-  const std::vector<Record> recs = parameterize(boxes, vpm, {0, 0, kW, kH}, {.border = 2});
+  const glm::mat4 vpm = mta::viewProjection(camera(), kParamW, kParamH);
+  const std::vector<Record> recs = parameterize(boxes, vpm, {0, 0, kParamW, kParamH}, {.border = 2});
   int culled = 0, seen = 0;
   for (size_t i = 0; i < recs.size(); ++i) {
-    const std::vector<uint8_t> mask = testing::coveredPixels(tris[i], vpm, kW, kH);
+    const std::vector<uint8_t> mask = testing::coveredPixels(tris[i], vpm, kParamW, kParamH);
     int pixels = 0, outside = 0;
-    for (int y = 0; y < kH; ++y)
-      for (int x = 0; x < kW; ++x)
-        if (mask[size_t(y) * kW + x]) ++pixels, outside += recs[i].inner.contains(x, y) ? 0 : 1;
+    for (int y = 0; y < kParamH; ++y)
+      for (int x = 0; x < kParamW; ++x)
+        if (mask[size_t(y) * kParamW + x]) ++pixels, outside += recs[i].inner.contains(x, y) ? 0 : 1;
     if (!recs[i].visible()) {
       ++culled;
       EXPECT_EQ(pixels, 0) << "object " << i << " was culled (" << culledName(recs[i].culled) << ") but covers pixels";
@@ -73,45 +73,45 @@ TEST(RttaParameterization, ProjectedBoxContainsItsObjectAcrossTheNearPlane) {
   // the eye would project mirrored (w < 0) onto the left half if projected naively.
   std::vector<glm::vec3> wall;
   testing::addBox(wall, {2.0f, -1.0f, -5.0f}, {3.0f, 1.5f, 25.0f});
-  const glm::mat4 vpm = mta::viewProjection(camera(), kW, kH);
+  const glm::mat4 vpm = mta::viewProjection(camera(), kParamW, kParamH);
   const Box3 box = boundsOf(wall);
-  const std::vector<Record> recs = parameterize(std::span(&box, 1), vpm, {0, 0, kW, kH}, {.border = 0});
+  const std::vector<Record> recs = parameterize(std::span(&box, 1), vpm, {0, 0, kParamW, kParamH}, {.border = 0});
   ASSERT_TRUE(recs[0].visible());
   EXPECT_TRUE(recs[0].nearClipped);
   EXPECT_FALSE(recs[0].wholeViewport);
-  const std::vector<uint8_t> mask = testing::coveredPixels(wall, vpm, kW, kH);
+  const std::vector<uint8_t> mask = testing::coveredPixels(wall, vpm, kParamW, kParamH);
   int pixels = 0;
-  for (int y = 0; y < kH; ++y)
-    for (int x = 0; x < kW; ++x)
-      if (mask[size_t(y) * kW + x]) {
+  for (int y = 0; y < kParamH; ++y)
+    for (int x = 0; x < kParamW; ++x)
+      if (mask[size_t(y) * kParamW + x]) {
         ++pixels;
         EXPECT_TRUE(recs[0].inner.contains(x, y)) << x << "," << y;
       }
   EXPECT_GT(pixels, 500);
   // The wall is on the right: its region does not reach the left half of the screen.
-  EXPECT_GE(recs[0].inner.x0, kW / 2);
-  EXPECT_EQ(recs[0].inner.x1, kW);  // it runs out of the right edge
+  EXPECT_GE(recs[0].inner.x0, kParamW / 2);
+  EXPECT_EQ(recs[0].inner.x1, kParamW);  // it runs out of the right edge
 }
 
 TEST(RttaParameterization, ABoxEntirelyBehindTheCameraIsCulledAndWithoutCullingHasNoRegion) {
   std::vector<glm::vec3> b;
   testing::addBox(b, {-1.0f, -1.0f, 12.0f}, {1.0f, 1.0f, 14.0f});
   const Box3 box = boundsOf(b);
-  const glm::mat4 vpm = mta::viewProjection(camera(), kW, kH);
-  EXPECT_EQ(parameterize(std::span(&box, 1), vpm, {0, 0, kW, kH}, {})[0].culled, Culled::Frustum);
+  const glm::mat4 vpm = mta::viewProjection(camera(), kParamW, kParamH);
+  EXPECT_EQ(parameterize(std::span(&box, 1), vpm, {0, 0, kParamW, kParamH}, {})[0].culled, Culled::Frustum);
   // Without frustum culling (the paper's Table 1 runs) the near-plane clip leaves nothing in front:
   // the record falls back to the whole viewport, which is conservative, never wrong.
-  const Record r = parameterize(std::span(&box, 1), vpm, {0, 0, kW, kH}, {.cull = false})[0];
+  const Record r = parameterize(std::span(&box, 1), vpm, {0, 0, kParamW, kParamH}, {.cull = false})[0];
   EXPECT_TRUE(r.visible());
   EXPECT_TRUE(r.wholeViewport);
 }
 
 TEST(RttaParameterization, AnEmptyObjectGetsNoRegionAndBadOptionsAreErrors) {
   const Box3 empty;
-  const glm::mat4 vpm = mta::viewProjection(camera(), kW, kH);
-  EXPECT_EQ(parameterize(std::span(&empty, 1), vpm, {0, 0, kW, kH}, {})[0].culled, Culled::Empty);
-  EXPECT_THROW(parameterize(std::span(&empty, 1), vpm, {0, 0, kW, kH}, {.border = -1}), Error);
-  EXPECT_THROW(parameterize(std::span(&empty, 1), vpm, {0, 0, 0, kH}, {}), Error);
+  const glm::mat4 vpm = mta::viewProjection(camera(), kParamW, kParamH);
+  EXPECT_EQ(parameterize(std::span(&empty, 1), vpm, {0, 0, kParamW, kParamH}, {})[0].culled, Culled::Empty);
+  EXPECT_THROW(parameterize(std::span(&empty, 1), vpm, {0, 0, kParamW, kParamH}, {.border = -1}), Error);
+  EXPECT_THROW(parameterize(std::span(&empty, 1), vpm, {0, 0, 0, kParamH}, {}), Error);
 }
 
 }  // namespace

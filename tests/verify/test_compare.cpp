@@ -12,8 +12,7 @@
 #include "verify/compare_report.h"
 #include "verify/image_compare.h"
 
-using namespace tessera;
-using namespace tessera::verify;
+namespace tessera::verify {
 namespace fs = std::filesystem;
 
 namespace {
@@ -245,3 +244,5 @@ TEST(Compare, RefusedComparisonStillWritesAReport) {
   EXPECT_FALSE(fs::exists(d + "/report/heatmap.png"));
   EXPECT_NE(readText(d + "/report/index.html").find("nope_a.png"), std::string::npos);
 }
+
+}  // namespace tessera::verify

@@ -13,8 +13,7 @@
 #include "verify/line_chart.h"
 #include "verify/rgba_canvas.h"
 
-using namespace tessera::verify;
-using namespace tessera::verify::chart_test;
+namespace tessera::verify::chart_test {
 
 // ---- RgbaCanvas: font ----
 
@@ -325,3 +324,5 @@ TEST(LineChart, StackingSumsHeightsAndKeepsEachPanel) {
   EXPECT_EQ(none.width(), 0);
   EXPECT_EQ(none.height(), 0);
 }
+
+}  // namespace tessera::verify::chart_test

@@ -14,8 +14,7 @@
 #include "verify/line_chart.h"
 #include "verify/rgba_canvas.h"
 
-using namespace tessera::verify;
-using namespace tessera::verify::chart_test;
+namespace tessera::verify::chart_test {
 
 namespace {
 
@@ -274,3 +273,5 @@ TEST(LineChart, TheExampleChartsMarginsAreBackground) {
   for (int x = lastLabelEnd + 1; x < cv.width(); ++x)
     for (int y = 0; y < cv.height(); ++y) ASSERT_EQ(pixel(cv, x, y), kWhite) << x << "," << y;
 }
+
+}  // namespace tessera::verify::chart_test

@@ -11,8 +11,7 @@
 #include "tools/scenes/scenes.h"
 #include "verify/visibility.h"
 
-using namespace tessera;
-using namespace tessera::verify;
+namespace tessera::verify {
 
 namespace {
 
@@ -292,3 +291,5 @@ TEST(Visibility, JsonIsDeterministicAndComplete) {
   EXPECT_FALSE(a["embree"]["version"].get<std::string>().empty());
   EXPECT_FALSE(a["embree"]["isa"].get<std::string>().empty());
 }
+
+}  // namespace tessera::verify

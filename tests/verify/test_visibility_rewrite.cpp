@@ -12,8 +12,7 @@
 #include "verify/visibility.h"
 #include "verify/visibility_rewrite.h"
 
-using namespace tessera;
-using namespace tessera::verify;
+namespace tessera::verify {
 
 namespace {
 size_t drawCount(const CommandList& list) {
@@ -122,3 +121,5 @@ TEST(VisibilityRewrite, AFrameWithAProgramThatWritesItsDepthIsRefusedNamingThePr
     EXPECT_NE(std::string(e.what()).find("'atlas_sprite' writes its fragment depth"), std::string::npos) << e.what();
   }
 }
+
+}  // namespace tessera::verify

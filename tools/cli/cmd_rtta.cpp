@@ -43,7 +43,7 @@ void addCommon(CLI::App* cmd, RttaRenderArgs& a) {
   addModelBudgetOptions(cmd, a.limits);
 }
 
-void addRender(CLI::App* rtta) {
+void addRttaRender(CLI::App* rtta) {
   auto a = std::make_shared<RttaRenderArgs>();
   auto* render = rtta->add_subcommand(
       "render",
@@ -84,7 +84,7 @@ void addParams(CLI::App* rtta) {
 void addRttaCommands(CLI::App& app) {
   auto* rtta = app.add_subcommand("rtta", "Render-to-texture-atlas, RTTA (Trapp & Döllner 2010): records, STD / RTT / RTTA frames");
   rtta->require_subcommand(1);
-  addRender(rtta);
+  addRttaRender(rtta);
   addParams(rtta);
 }
 

@@ -113,7 +113,7 @@ void addInfo(CLI::App* tab) {
   });
 }
 
-void addRender(CLI::App* tab) {
+void addTabRender(CLI::App* tab) {
   auto a = std::make_shared<TabRenderArgs>();
   auto* render = tab->add_subcommand(
       "render",
@@ -145,7 +145,7 @@ void addTabCommands(CLI::App& app) {
   tab->require_subcommand(1);
   addBuild(tab);
   addInfo(tab);
-  addRender(tab);
+  addTabRender(tab);
 }
 
 }  // namespace tessera::cli

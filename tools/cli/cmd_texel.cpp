@@ -25,7 +25,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-verify::RgbaCanvas histogramPng(const std::array<uint64_t, mta::kRatioBins>& hist, double tau) {
+verify::RgbaCanvas ratioHistogramPng(const std::array<uint64_t, mta::kRatioBins>& hist, double tau) {
   const int barW = 56, chartH = 200, left = 20, top = 30;
   verify::RgbaCanvas c(left * 2 + barW * mta::kRatioBins, chartH + top + 50, {255, 255, 255, 255});
   c.text(left, 8, "pixels per texel at the level sampled", {0, 0, 0, 255}, 2);
@@ -176,7 +176,7 @@ nlohmann::json runTexel(const PathRunArgs& a) {
                             {"histogram", histJson}};
   nlohmann::json doc = {{"options", optionsJson(a, o, path)}, {"summary", summary}, {"frames", rows}};
   writeTextFile((fs::path(a.out) / "texel.json").string(), doc.dump(1) + "\n");
-  writeChartPng((fs::path(a.out) / "histogram.png").string(), histogramPng(hist, tau));
+  writeChartPng((fs::path(a.out) / "histogram.png").string(), ratioHistogramPng(hist, tau));
   return summary;
 }
 

@@ -179,7 +179,7 @@ verify::RgbaCanvas heatMap(const LodMap& m, const std::string& title) {
   return c;
 }
 
-verify::RgbaCanvas histogramPng(const FrameStats& s) {
+verify::RgbaCanvas lambdaHistogramPng(const FrameStats& s) {
   const int barW = 22, chartH = 200, left = 20, top = 30;
   verify::RgbaCanvas c(left * 2 + barW * kLevelBins, chartH + top + 60, kWhite);
   c.text(left, 8, "lookups by lambda (levels, half-level bins)", kBlack, 2);
@@ -250,7 +250,7 @@ LodMap probeFile(const std::string& path, int threads) {
 
 void writeFrameOutputs(const std::string& dir, const std::string& suffix, const LodMap& m, const FrameStats& s) {
   writeChartPng((fs::path(dir) / ("lambda" + suffix + ".png")).string(), heatMap(m, s.name));
-  writeChartPng((fs::path(dir) / ("histogram" + suffix + ".png")).string(), histogramPng(s));
+  writeChartPng((fs::path(dir) / ("histogram" + suffix + ".png")).string(), lambdaHistogramPng(s));
   writeLambdaRaw((fs::path(dir) / ("lambda" + suffix + ".i32")).string(), m);
 }
 

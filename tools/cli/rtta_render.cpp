@@ -85,7 +85,7 @@ Setup validateArgs(const RttaRenderArgs& a) {
   return s;
 }
 
-mta::CameraPath choosePath(const RttaRenderArgs& a, const std::array<float, 6>& bounds, bool empty) {
+mta::CameraPath rttaCameraPath(const RttaRenderArgs& a, const std::array<float, 6>& bounds, bool empty) {
   if (a.input == "five" && a.path == "orbit") {
     const auto [w, h] = parseSize(a.size, "--size");
     return fiveOrbit(a.frames, w, h);
@@ -156,7 +156,7 @@ std::string fmtPercent(double v) {
   return b;
 }
 
-void writeIndex(const RttaRenderArgs& a, const nlohmann::json& table, const nlohmann::json& rows) {
+void writeRttaIndex(const RttaRenderArgs& a, const nlohmann::json& table, const nlohmann::json& rows) {
   std::string h =
       "<!doctype html><html><head><meta charset=\"utf-8\"><title>tessera rtta render</title><style>"
       "body{font-family:sans-serif;margin:20px}table{border-collapse:collapse}td,th{border:1px solid #ccc;"
@@ -192,7 +192,7 @@ std::vector<std::string> rttaSceneNames() { return builtinRttaSceneNames(); }
 nlohmann::json rttaParams(const RttaRenderArgs& a) {
   Setup s = validateArgs(a);
   const LoadedRttaScene ls = loadRttaScene(a.input, a.objects, a.limits, true, a.texturing == "tab");
-  const mta::CameraPath path = choosePath(a, ls.scene.tab.bounds, ls.scene.vertices.empty());
+  const mta::CameraPath path = rttaCameraPath(a, ls.scene.tab.bounds, ls.scene.vertices.empty());
   if (path.frames.empty()) throw Error(a.path + ": the camera path has no frames");
   mta::validate(path.frames[0], "rtta params: camera path frame 0");
   s.options.mode = Mode::Rtta;
@@ -234,7 +234,7 @@ nlohmann::json runRttaRender(const RttaRenderArgs& a) {
   for (uint32_t id : a.important)
     if (id >= scene.objectNames.size())
       throw Error("--important " + std::to_string(id) + ": the scene has " + std::to_string(scene.objectNames.size()) + " objects");
-  const mta::CameraPath path = choosePath(a, scene.tab.bounds, scene.vertices.empty());
+  const mta::CameraPath path = rttaCameraPath(a, scene.tab.bounds, scene.vertices.empty());
   prepareOutputDirectory(a.out, "-o");
   CpuBackend backend(RenderOptions{a.threads});
   rtta::LayerAllocator allocator(s.layers);
@@ -461,7 +461,7 @@ nlohmann::json runRttaRender(const RttaRenderArgs& a) {
   writeTextFile((fs::path(a.out) / "table.json").string(), table.dump(1) + "\n");
   nlohmann::json doc = {{"table", table}, {"frames", rows}};
   writeTextFile((fs::path(a.out) / "frames.json").string(), doc.dump(1) + "\n");
-  writeIndex(a, table, rows);
+  writeRttaIndex(a, table, rows);
   return table;
 }
 

@@ -15,7 +15,7 @@ using verify::RgbaCanvas;
 
 constexpr int kPanelW = 660, kPanelH = 440, kScale = 2;
 constexpr int kLeft = 70, kRight = 20, kTop = 40, kBottom = 50;
-const Rgba kBlack{0, 0, 0, 255}, kGrid{225, 225, 225, 255}, kMajor{190, 190, 190, 255};
+const Rgba kInk{0, 0, 0, 255}, kGrid{225, 225, 225, 255}, kMajor{190, 190, 190, 255};
 
 struct Axis {
   int lo = 0, hi = 1;                         // decades: 10^lo .. 10^hi
@@ -42,7 +42,7 @@ void drawPanel(RgbaCanvas& c, int ox, int oy, const PlotPanel& p) {
     }
   const Axis ax = decades(xmin, xmax), ay = decades(ymin, ymax);
   const int left = ox + kLeft, right = ox + kPanelW - kRight, top = oy + kTop, bottom = oy + kPanelH - kBottom;
-  c.text(ox + kLeft, oy + 10, p.title, kBlack, kScale);
+  c.text(ox + kLeft, oy + 10, p.title, kInk, kScale);
   // Grid: 1..9 x 10^k, the decades darker and labelled.
   for (int k = ax.lo; k <= ax.hi; ++k)
     for (int m = 1; m <= (k == ax.hi ? 1 : 9); ++m) {
@@ -50,7 +50,7 @@ void drawPanel(RgbaCanvas& c, int ox, int oy, const PlotPanel& p) {
       c.line(x, top, x, bottom, m == 1 ? kMajor : kGrid);
       if (m == 1) {
         const std::string s = verify::formatAxisNumber(1, k, true);
-        c.text(x - RgbaCanvas::textWidth(s, kScale) / 2, bottom + 6, s, kBlack, kScale);
+        c.text(x - RgbaCanvas::textWidth(s, kScale) / 2, bottom + 6, s, kInk, kScale);
       }
     }
   for (int k = ay.lo; k <= ay.hi; ++k)
@@ -59,13 +59,13 @@ void drawPanel(RgbaCanvas& c, int ox, int oy, const PlotPanel& p) {
       c.line(left, y, right, y, m == 1 ? kMajor : kGrid);
       if (m == 1) {
         const std::string s = verify::formatAxisNumber(1, k, true);
-        c.text(left - 6 - RgbaCanvas::textWidth(s, kScale), y - kScale * 2, s, kBlack, kScale);
+        c.text(left - 6 - RgbaCanvas::textWidth(s, kScale), y - kScale * 2, s, kInk, kScale);
       }
     }
-  c.line(left, bottom, right, bottom, kBlack);
-  c.line(left, top, left, bottom, kBlack);
-  c.text((left + right - RgbaCanvas::textWidth(p.xLabel, kScale)) / 2, bottom + 26, p.xLabel, kBlack, kScale);
-  c.textUp(ox + 6, (top + bottom - RgbaCanvas::textWidth("ms", kScale)) / 2, "ms", kBlack, kScale);
+  c.line(left, bottom, right, bottom, kInk);
+  c.line(left, top, left, bottom, kInk);
+  c.text((left + right - RgbaCanvas::textWidth(p.xLabel, kScale)) / 2, bottom + 26, p.xLabel, kInk, kScale);
+  c.textUp(ox + 6, (top + bottom - RgbaCanvas::textWidth("ms", kScale)) / 2, "ms", kInk, kScale);
   // Lines and markers first, then the notes on white boxes: at each point, a note goes above its marker
   // when no other noted line is higher there, else below, so two renderers' notes at one x part.
   const auto px = [&](double v) { return int(std::lround(ax.pos(v, left, right))); };
@@ -104,10 +104,10 @@ void drawPanel(RgbaCanvas& c, int ox, int oy, const PlotPanel& p) {
   int legendY = top + 6;
   for (const PlotLine& l : p.lines) {
     c.fillRect(left + 10, legendY + 2, 14, 6, l.color);
-    c.text(left + 30, legendY, l.label, kBlack, kScale);
+    c.text(left + 30, legendY, l.label, kInk, kScale);
     legendY += 16;
   }
-  c.text(left + 10, legendY + 2, "numbers: llvmpipe ms / oracle ms", kBlack, kScale);
+  c.text(left + 10, legendY + 2, "numbers: llvmpipe ms / oracle ms", kInk, kScale);
 }
 
 }  // namespace

@@ -32,7 +32,7 @@ using batching::Variant;
 
 namespace {
 
-mta::CameraPath choosePath(const TabRenderArgs& a, const batching::TabScene& s) {
+mta::CameraPath tabCameraPath(const TabRenderArgs& a, const batching::TabScene& s) {
   const auto names = mta::builtinPathNames();
   if (std::find(names.begin(), names.end(), a.path) != names.end()) {
     if (s.vertices.empty()) throw Error(a.input + ": the scene has no vertices to lay a camera path over");
@@ -54,7 +54,8 @@ std::vector<uint8_t> diffImage(const std::vector<uint8_t>& a, const std::vector<
   return d;
 }
 
-void writeIndex(const TabRenderArgs& a, const nlohmann::json& table1, const nlohmann::json& summary, const nlohmann::json& rows) {
+void writeTabIndex(const TabRenderArgs& a, const nlohmann::json& table1, const nlohmann::json& summary,
+                   const nlohmann::json& rows) {
   std::string h =
       "<!doctype html><html><head><meta charset=\"utf-8\"><title>tessera tab render</title><style>"
       "body{font-family:sans-serif;margin:20px}table{border-collapse:collapse}td,th{border:1px solid #ccc;"
@@ -95,7 +96,7 @@ nlohmann::json runTabRender(const TabRenderArgs& a) {
   const auto [w, h] = parseSize(a.size, "--size");
   prepareOutputDirectory(a.out, "-o");
   const batching::TabScene s = batching::readTabFile(a.input, a.limits);
-  const mta::CameraPath path = choosePath(a, s);
+  const mta::CameraPath path = tabCameraPath(a, s);
   std::vector<Variant> variants;
   if (a.both) variants = {Variant::Baseline, Variant::Batched};
   else variants = {a.baseline ? Variant::Baseline : Variant::Batched};
@@ -233,7 +234,7 @@ nlohmann::json runTabRender(const TabRenderArgs& a) {
   const nlohmann::json table1 = batching::tableOneJson(s);
   nlohmann::json doc = {{"scene", table1}, {"summary", summary}, {"frames", rows}};
   writeTextFile((fs::path(a.out) / "frames.json").string(), doc.dump(1) + "\n");
-  writeIndex(a, table1, summary, rows);
+  writeTabIndex(a, table1, summary, rows);
   return summary;
 }
 
