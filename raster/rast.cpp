@@ -288,11 +288,7 @@ class TriangleRasterizer {
     interpolateQuadDepth(t_, e, q.z);
     const TargetView& tv = scene_.target;
     if (ds_.depth.test && tv.depth && !lateDepth_) {
-      for (int p = 0; p < 4; ++p) {
-        if (!(live >> p & 1)) continue;
-        const float stored = depth_.depth(qx + (p & 1), qy + (p >> 1));
-        if (!depthPasses(ds_.depth.func, q.z[p], stored)) live &= uint8_t(~(1u << p));
-      }
+      live &= depthPassMask(q);
       stats_.fragments_depth_failed += quadPixels(uint32_t(cov & ~live));
       if (!live) return;  // no pixel can change: skip shading (no side effects are lost)
     }
