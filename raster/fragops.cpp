@@ -77,7 +77,7 @@ void writeFragment(Format f, uint8_t* texel, const uint32_t bits[4], const Blend
       }
       // Missing destination channels read as (0, 0, 0, 1) (GL 4.6 §17.3.6, Table 15.1 for R8).
       double dst[4] = {0, 0, 0, 1}, out[4];
-      for (int k = 0; k < n; ++k) dst[k] = texel[k] / 255.0;
+      for (int k = 0; k < n; ++k) dst[k] = kUnorm8ToDouble.v[texel[k]];
       blend(b, true, src, dst, out);
       for (int k = 0; k < n; ++k) texel[k] = toUnorm8(out[k]);
       return;

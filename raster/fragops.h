@@ -45,6 +45,41 @@ inline uint8_t toUnorm8(double c) {
   return uint8_t(roundHalfEvenNear(c * 255.0));  // 0 < c * 255 < 255: roundHalfEven's value
 }
 
+// The unorm8 value i as a double, i / 255.0 (GL 4.6 §2.3.5.1, eq. 2.1), for every byte: a blend reads
+// its destination through this table instead of dividing per channel. The division is IEEE, so the
+// compile-time quotient is the run-time one (tests/raster/test_blend.cpp checks every entry).
+struct Unorm8Doubles {
+  double v[256];
+  constexpr Unorm8Doubles() : v() {
+    for (int i = 0; i < 256; ++i) v[i] = double(i) / 255.0;
+  }
+};
+inline constexpr Unorm8Doubles kUnorm8ToDouble{};
+
+// True when `b` is the "source over" form glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA) with
+// GL_FUNC_ADD for colour and alpha, the form blendSourceOverRgba8() computes directly.
+inline bool isSourceOver(const BlendState& b) {
+  return b.enabled && b.eqRgb == BlendEq::Add && b.eqAlpha == BlendEq::Add && b.srcRgb == BlendFactor::SrcAlpha &&
+         b.srcAlpha == BlendFactor::SrcAlpha && b.dstRgb == BlendFactor::OneMinusSrcAlpha &&
+         b.dstAlpha == BlendFactor::OneMinusSrcAlpha;
+}
+
+// writeFragment() of an RGBA8 texel under a source-over BlendState, with the same IEEE operations in
+// the same order, so the same bytes: blend()'s unorm rules reduce to s * a + d * (1 - a) per channel
+// with s = clamp01(src), a = clamp01(src alpha) and d = texel / 255. Its clamps of d, of the factors
+// a and 1 - a (both in [0, 1] already) and of the sum (toUnorm8 clamps the same way, NaN included) are
+// identities, and the factors are the same for every channel. tests/raster/test_blend.cpp compares it
+// with blend() + toUnorm8 over every destination byte.
+inline void blendSourceOverRgba8(const float src[4], uint8_t* texel) {
+  const auto clamp01 = [](double v) { return v > 0.0 ? (v < 1.0 ? v : 1.0) : 0.0; };  // NaN -> 0
+  const double a = clamp01(src[3]), na = 1.0 - a;
+  for (int k = 0; k < 4; ++k) {
+    const double s = k == 3 ? a : clamp01(src[k]);
+    const double sf = s * a, df = kUnorm8ToDouble.v[texel[k]] * na;
+    texel[k] = toUnorm8(sf + df);
+  }
+}
+
 // Blends `src` (the program's output) with `dst` under `b`; `unorm` selects the fixed-point rules.
 // Returns the result in double, before conversion.
 void blend(const BlendState& b, bool unorm, const float src[4], const double dst[4], double out[4]);

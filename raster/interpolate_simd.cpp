@@ -56,6 +56,7 @@ void QuadDepthsT(const QuadPixels& px, size_t n, const InterpolationPlane& t, Ou
 
 template <typename Out>
 void QuadVaryingsT(const QuadPixels& px, size_t n, const InterpolationPlane& t, Out* var) {
+  if (t.varyings == 0) return;  // the barycentrics serve only the varyings
   const DD d;
   const DI di;
   const auto w0s = hn::Set(d, t.invW[0]), w1s = hn::Set(d, t.invW[1]), w2s = hn::Set(d, t.invW[2]);

@@ -98,11 +98,21 @@ void clearLod(const Scene& scene, const ClearCmd& c, const TileRect& tile) {
       for (int32_t x = x0; x <= x1; ++x) (*scene.lod)[l].at(x, y) = LodPixel{};
 }
 
+// Every attachment the draw's program writes is RGBA8 or absent (flush()'s whole-quad write).
+bool allRgba8(const Scene& scene, const DrawState& ds) {
+  for (int a = 0; a < ds.colorOutputs; ++a) {
+    const TextureData* tex = scene.target.color[size_t(a)];
+    if (tex && tex->desc.format != Format::RGBA8) return false;
+  }
+  return true;
+}
+
 class TriangleRasterizer {
  public:
   TriangleRasterizer(const Scene& scene, const TriSetup& t, RastScratch& s, PipelineStats& stats)
       : scene_(scene), t_(t), ds_(*scene.states[t.drawState]), s_(s), stats_(stats),
-        lateDepth_(ds_.program->writesDepth()), unorm8Quad_(s.unorm8Quad),
+        lateDepth_(ds_.program->writesDepth()), sourceOver_(isSourceOver(ds_.blend)), unorm8Quad_(s.unorm8Quad),
+        unblendedRgba8_(!ds_.blend.enabled && allRgba8(scene, ds_)),
         // The LOD probe shades quad by quad, and a late depth test needs no early one: both stay per quad.
         gathered_(s.quadDepths && s.quadVaryings && !lateDepth_ && !scene.lod) {
     beginPlanCache();  // a new triangle: no lambda or plan of another one is reused (sample.h)
@@ -339,6 +349,22 @@ class TriangleRasterizer {
         for (int a = 0; a < ds_.colorOutputs; ++a)
           if (color_[a].base && color_[a].format == Format::RGBA8)
             unorm8Quad_(s_.outs[n].color[a][0].f, unorm[a]);
+      if (keep == 0xF && unblendedRgba8_) {
+        // The common write of a whole quad: each row's two pixels in one copy. The pixels of a quad are
+        // distinct, so the order of their writes is not observable.
+        if (depthWrite) {
+          std::memcpy(depth_.at(q.x, q.y), z, 2 * sizeof(float));
+          std::memcpy(depth_.at(q.x, q.y + 1), z + 2, 2 * sizeof(float));
+        }
+        for (int a = 0; a < ds_.colorOutputs; ++a) {
+          if (!color_[a].base) continue;
+          std::memcpy(color_[a].at(q.x, q.y), unorm[a], 8);
+          std::memcpy(color_[a].at(q.x, q.y + 1), unorm[a] + 8, 8);
+        }
+        stats_.pixels_written += 4;
+        if (scene_.lod) recordLod(q, keep);
+        continue;
+      }
       for (int p = 0; p < 4; ++p) {
         if (!(keep >> p & 1)) continue;
         const int32_t x = q.x + (p & 1), y = q.y + (p >> 1);
@@ -349,6 +375,8 @@ class TriangleRasterizer {
           uint8_t* texel = c.at(x, y);
           if (c.format == Format::RGBA8 && !ds_.blend.enabled) {
             std::memcpy(texel, unorm[a] + 4 * p, 4);
+          } else if (c.format == Format::RGBA8 && sourceOver_) {
+            blendSourceOverRgba8(s_.outs[n].color[a][p].f, texel);  // writeFragment's bytes (fragops.h)
           } else {
             writeFragment(c.format, texel, s_.outs[n].color[a][p].u, ds_.blend);
           }
@@ -390,7 +418,9 @@ class TriangleRasterizer {
   RastScratch& s_;
   PipelineStats& stats_;
   const bool lateDepth_;  // the program writes gl_FragDepth: the depth test runs after shading (F11)
+  const bool sourceOver_;  // blending is SRC_ALPHA, ONE_MINUS_SRC_ALPHA, ADD (blendSourceOverRgba8)
   const Unorm8QuadFn unorm8Quad_;  // the running SIMD target's unorm8 conversion (RastScratch)
+  const bool unblendedRgba8_;  // no blending, and every written attachment is RGBA8 or absent
   const bool gathered_;  // blocks' quads go through the interpolation kernels (runGathered)
   InterpolationPlane plane_{};
   size_t pending_ = 0;  // quads gathered from the block being walked

@@ -77,8 +77,8 @@ static void renderTinyTris(benchmark::State& state, int triangles) {
   renderList(state, "tiny_tris", scenes::buildTinyTris(1280, 720, triangles));
 }
 
-static void renderFillLayers(benchmark::State& state, int w, int h) {
-  renderList(state, "fill_layers", scenes::buildFillLayers(w, h, "trilinear"));
+static void renderFillLayers(benchmark::State& state, int w, int h, std::string_view variant) {
+  renderList(state, "fill_layers", scenes::buildFillLayers(w, h, variant));
 }
 
 static void registerAll() {
@@ -93,7 +93,12 @@ static void registerAll() {
       ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseManualTime();
   benchmark::RegisterBenchmark("tiny_tris_1m", renderTinyTris, 1000000)
       ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseManualTime();
-  benchmark::RegisterBenchmark("fill_layers_720p", renderFillLayers, 1280, 720)
+  benchmark::RegisterBenchmark("fill_layers_720p", renderFillLayers, 1280, 720, "trilinear")
+      ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseManualTime();
+  // The sweep's other fill variants: the per-fragment cost without a texture, and with blending.
+  benchmark::RegisterBenchmark("fill_flat_720p", renderFillLayers, 1280, 720, "flat_color")
+      ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseManualTime();
+  benchmark::RegisterBenchmark("fill_blend_720p", renderFillLayers, 1280, 720, "trilinear_blend")
       ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseManualTime();
 }
 
