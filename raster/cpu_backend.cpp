@@ -152,16 +152,28 @@ struct CpuBackend::Impl {
   Scene scene;
   PipelineStats stats;
   std::vector<SetupSink> sinks;  // reused across draws
-  // Draws shaded but not yet set up (setupPending): their parameters, indices and vertices, in order.
+  // Draws not yet set up (setupPending): their parameters, indices and vertices, in order. Their
+  // vertices are shaded together too (shadePending), so that the small draws of a frame share the
+  // threads instead of each shading its one chunk on one of them.
   struct PendingDraw {
     SetupParams params;
     uint32_t triCount = 0;
     bool dense = false;
     uint32_t lo = 0;          // dense: the lowest index, vertex i of the draw is at lo + i
     size_t idx = 0, vtx = 0;  // offsets into pendingIdx and pendingIn / pendingOut
+    size_t shadeCount = 0;    // vertices to shade: lo .. lo + shadeCount - 1 (dense) or every index
+    // What fetchVertex reads, as the draw saw it: the bound vertex buffer and layout may change before
+    // the vertices are shaded; the buffer's bytes cannot (an upload flushes first).
+    const BufferData* vertexBuffer = nullptr;
+    VertexLayout layout;
     size_t firstChunk = 0;    // setupPending: the draw's first chunk among all pending chunks
   };
   std::vector<PendingDraw> pending;
+  size_t shadedDraws = 0;  // pending[0, shadedDraws) have their vertices shaded
+  struct VertexChunk {
+    size_t draw, begin, end;  // vertices [begin, end) of pending[draw]
+  };
+  std::vector<VertexChunk> vertexChunks;  // shadePending's tasks, reused
   size_t pendingTris = 0;
   AppendArray<uint32_t> pendingIdx;
   AppendArray<VertexIn> pendingIn;
@@ -333,8 +345,7 @@ struct CpuBackend::Impl {
     return sigFinish(sigMix(h, layer));
   }
 
-  void fetchVertex(uint32_t index, VertexIn& in) const {
-    const BufferData& vb = *buffers[vertexBuffer];
+  static void fetchVertex(const BufferData& vb, const VertexLayout& layout, uint32_t index, VertexIn& in) {
     for (int a = 0; a < kMaxAttribs; ++a) {
       Vec4& v = in.attr[a];
       v = {0.0f, 0.0f, 0.0f, 1.0f};  // GL's default for missing components
@@ -388,22 +399,13 @@ struct CpuBackend::Impl {
     for (uint32_t i = 0; i < n; ++i) lo = std::min(lo, idx[i]), hi = std::max(hi, idx[i]);
     const bool dense = uint64_t(hi - lo) + 1 <= uint64_t(n) * 2;
     const size_t shadeCount = dense ? size_t(hi - lo) + 1 : size_t(n);
-    pd.dense = dense, pd.lo = lo, pd.vtx = pendingIn.size;
-    // Written in full below: fetchVertex sets every attribute and the id, `out` is zeroed per chunk.
-    VertexIn* const in = pendingIn.append(shadeCount);
-    VertexOut* const out = pendingOut.append(shadeCount);
+    pd.dense = dense, pd.lo = lo, pd.vtx = pendingIn.size, pd.shadeCount = shadeCount;
+    pd.vertexBuffer = buffers[vertexBuffer].get();
+    pd.layout = layout;
+    // Filled by shadePending: fetchVertex sets every attribute and the id, `out` is zeroed per chunk.
+    pendingIn.append(shadeCount);
+    pendingOut.append(shadeCount);
     const bool timing = scene.timeStages;
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, shadeCount, kVertexChunk), [&](const tbb::blocked_range<size_t>& r) {
-      const uint64_t t0 = timing ? stageClock() : 0;
-      for (size_t i = r.begin(); i != r.end(); ++i) fetchVertex(dense ? lo + uint32_t(i) : idx[i], in[i]);
-      std::span<const VertexIn> ins(in + r.begin(), r.size());
-      std::span<VertexOut> outs(out + r.begin(), r.size());
-      // One fill of the chunk: a fill per 128-byte VertexOut compiled to a `rep stos` each, whose start-up
-      // cost made it over half of the vertex stage (city_block).
-      std::memset(static_cast<void*>(outs.data()), 0, outs.size_bytes());
-      ds.program->shadeVertices(ins, outs, ds.ctx);
-      if (timing) scratch.local().ticks.t[kStageVertex] += stageClock() - t0;
-    });
 
     SetupParams& params = pd.params;
     params.viewport = viewport;
@@ -423,8 +425,42 @@ struct CpuBackend::Impl {
   // chunk order, so the bins see the triangles in submission order whatever the thread count and
   // however many draws wait (setup of one triangle never reads another's, and nothing between the
   // draws touches the bins: a clear or a flush calls this first).
+  // Shades the vertices of the pending draws that are not shaded yet, all in one parallel loop over
+  // chunks of at most kVertexChunk vertices of one draw. Vertex shading has no cross-vertex state and
+  // each draw's program reads its own snapshot, so when and in which task a vertex is shaded does not
+  // change a byte.
+  void shadePending() {
+    if (shadedDraws == pending.size()) return;
+    vertexChunks.clear();
+    for (size_t d = shadedDraws; d < pending.size(); ++d)
+      for (size_t b = 0; b < pending[d].shadeCount; b += kVertexChunk)
+        vertexChunks.push_back({d, b, std::min(pending[d].shadeCount, b + kVertexChunk)});
+    shadedDraws = pending.size();
+    const bool timing = scene.timeStages;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, vertexChunks.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
+      const uint64_t t0 = timing ? stageClock() : 0;
+      for (size_t c = r.begin(); c != r.end(); ++c) {
+        const VertexChunk& vc = vertexChunks[c];
+        const PendingDraw& p = pending[vc.draw];
+        const DrawState& ds = *scene.states[p.params.stateIndex];
+        const uint32_t* const idx = pendingIdx.data.get() + p.idx;
+        VertexIn* const in = pendingIn.data.get() + p.vtx + vc.begin;
+        VertexOut* const out = pendingOut.data.get() + p.vtx + vc.begin;
+        const size_t n = vc.end - vc.begin;
+        for (size_t i = 0; i < n; ++i)
+          fetchVertex(*p.vertexBuffer, p.layout, p.dense ? p.lo + uint32_t(vc.begin + i) : idx[vc.begin + i], in[i]);
+        // One fill of the chunk: a fill per 128-byte VertexOut compiled to a `rep stos` each, whose
+        // start-up cost made it over half of the vertex stage (city_block).
+        std::memset(static_cast<void*>(out), 0, n * sizeof(VertexOut));
+        ds.program->shadeVertices(std::span<const VertexIn>(in, n), std::span<VertexOut>(out, n), ds.ctx);
+      }
+      if (timing) scratch.local().ticks.t[kStageVertex] += stageClock() - t0;
+    });
+  }
+
   void setupPending() {
     if (pending.empty()) return;
+    shadePending();
     size_t chunks = 0;
     for (PendingDraw& p : pending) {
       p.firstChunk = chunks;
@@ -499,6 +535,7 @@ struct CpuBackend::Impl {
       scratch.local().ticks.t[kStageClip] += clip;
     }
     pending.clear();
+    shadedDraws = 0;
     pendingTris = 0;
     pendingIdx.clear(), pendingIn.clear(), pendingOut.clear();
   }

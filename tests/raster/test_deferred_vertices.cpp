@@ -1,0 +1,91 @@
+// The oracle shades the vertices of consecutive draws together, when their triangles are set up
+// (raster/cpu_backend.cpp, shadePending), not when each draw is recorded. A draw must still see the
+// vertex buffer and layout that were bound when it was issued, even if later draws bind others before
+// anything forces the pending draws through.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <vector>
+
+#include "tests/raster/render_helpers.h"
+#include "tools/scenes/builder.h"
+
+namespace tessera::scenes {
+using tessera::testing::renderList;
+
+namespace {
+
+constexpr int kSize = 32;
+
+std::span<const uint8_t> bytesOf(const std::vector<Vertex>& v) {
+  return {reinterpret_cast<const uint8_t*>(v.data()), v.size() * sizeof(Vertex)};
+}
+
+// Two triangles in different places, each from its own vertex buffer and layout: mesh B's buffer
+// interleaves every vertex with an unused one (stride two vertices, attributes one vertex in), so
+// shading A's vertices with B's layout, or B's with A's buffer, draws somewhere else. With
+// `flushBetween`, an upload of an unrelated buffer between the draws sets A's triangle up before B's
+// are bound (an upload flushes the pending draws first).
+CommandList twoBufferFrame(bool flushBetween) {
+  CommandList cl;
+  RenderTarget t;
+  t.color[0] = createTarget(cl, Format::RGBA8, kSize, kSize);
+  cl.setRenderTarget(t);
+  cl.setViewport({0, 0, kSize, kSize});
+  cl.clearColor(0, {0, 0, 0, 0});
+  const std::vector<Vertex> a = {{{1, 1, 0}, {}, 0}, {{15, 1, 0}, {}, 0}, {{1, 15, 0}, {}, 0}};
+  std::vector<Vertex> b;
+  const Vertex unused{{-100, -100, 0}, {}, 0};
+  for (const glm::vec3 p : {glm::vec3(31, 31, 0), glm::vec3(17, 31, 0), glm::vec3(31, 17, 0)}) {
+    b.push_back(unused);
+    b.push_back({p, {}, 0});
+  }
+  const std::vector<uint32_t> idx = {0, 1, 2};
+  const std::span<const uint8_t> ib(reinterpret_cast<const uint8_t*>(idx.data()), idx.size() * sizeof(uint32_t));
+  const ResourceId vbA = cl.createBuffer(BufferKind::Vertex, bytesOf(a));
+  const ResourceId vbB = cl.createBuffer(BufferKind::Vertex, bytesOf(b));
+  const ResourceId ibuf = cl.createBuffer(BufferKind::Index, ib);
+  cl.useProgram(cl.createProgram("flat_color"));
+  setMatrix(cl, 0, ortho(0, kSize, 0, kSize, -1, 1));
+  setVec4(cl, 4, {1, 0.5f, 0.25f, 1});
+  cl.bindIndexBuffer(ibuf, IndexType::U32);
+
+  cl.bindVertexBuffer(vbA);
+  cl.setVertexLayout(standardLayout());
+  cl.drawIndexed(0, 3);
+  if (flushBetween) {
+    const uint8_t four[4] = {1, 2, 3, 4};
+    cl.createBuffer(BufferKind::Vertex, std::span<const uint8_t>(four, 4));
+  }
+  VertexLayout interleaved = standardLayout();
+  interleaved.stride = 2 * sizeof(Vertex);
+  for (VertexAttrib& at : interleaved.attribs)
+    if (at.components != 0) at.offset += uint32_t(sizeof(Vertex));
+  cl.bindVertexBuffer(vbB);
+  cl.setVertexLayout(interleaved);
+  cl.drawIndexed(0, 3);
+  return cl;
+}
+
+int coloured(const std::vector<uint8_t>& img) {
+  int n = 0;
+  for (size_t i = 0; i < img.size(); i += 4) n += img[i] != 0;
+  return n;
+}
+
+}  // namespace
+
+TEST(DeferredVertices, EachDrawUsesTheVertexBufferAndLayoutBoundWhenItWasIssued) {
+  for (int threads : {1, 2}) {
+    const auto together = renderList(twoBufferFrame(false), threads);
+    const auto apart = renderList(twoBufferFrame(true), threads);
+    ASSERT_EQ(together.images.size(), 1u);
+    ASSERT_EQ(apart.images.size(), 1u);
+    EXPECT_EQ(together.hashes[0], apart.hashes[0]) << threads << " threads";
+    // Both triangles are drawn, each in its own corner: 2 x (14 x 14 / 2 pixels, about).
+    EXPECT_GT(coloured(together.images[0]), 150) << threads << " threads";
+    EXPECT_EQ(together.stats.triangles_binned, 2u);
+  }
+}
+
+}  // namespace tessera::scenes
