@@ -7,6 +7,7 @@
 #include <limits>
 #include <utility>
 
+#include "raster/round.h"
 #include "raster/stage_times.h"
 #include "raster/tolerances.h"
 
@@ -133,6 +134,13 @@ void binTriangle(WindowVertex w0, WindowVertex w1, WindowVertex w2, const Vertex
   binned = true;
 }
 
+// A window coordinate in sub-pixels, rounded half to even (docs/spec-choices.md, snapping). Below 2^51
+// (every coordinate of a primitive inside the guard band) the two-addition form of raster/round.h
+// gives roundHalfEven's integer without its branches: the fraction of a snapped coordinate is
+// arbitrary, so those branches were mispredicted about half the time, and they were over half of the
+// setup of a small-triangle frame (city_block). Larger values keep the truncating form.
+inline int64_t snap(double v) { return std::fabs(v) <= 2251799813685248.0 ? roundHalfEvenNear(v) : roundHalfEven(v); }
+
 // Perspective division, viewport transform (GL 4.6 §13.8, in the order rr uses: divide first,
 // then scale and offset) and snapping.
 inline WindowVertex toWindow(const double pos[4], const Rect& vp) {
@@ -146,8 +154,8 @@ inline WindowVertex toWindow(const double pos[4], const Rect& vp) {
   double zw = zd * 0.5 + 0.5;
   zw = std::clamp(zw, 0.0, 1.0);
   WindowVertex w;
-  w.x = roundHalfEven(xw * double(kSubpixelOne));
-  w.y = roundHalfEven(yw * double(kSubpixelOne));
+  w.x = snap(xw * double(kSubpixelOne));
+  w.y = snap(yw * double(kSubpixelOne));
   w.invW = invW;
   w.z = float(zw);
   w.var = nullptr;
