@@ -118,7 +118,10 @@ struct AppendArray {
 // Triangles whose setup waits for the next setupPending(). Small draws (a city block: 257 draws of
 // about 80 triangles) then share one parallel setup instead of each running its one chunk on the
 // calling thread; a draw that brings the total to this bound is set up at once, which bounds memory.
-constexpr size_t kPendingTriangles = 65536;
+// Large draws go in slices of this size (draw()). 16384 keeps a slice's vertices (about 50k, 13 MB of
+// VertexIn + VertexOut) within the last-level cache: tiny_tris_1m took 247 ms at 65536 and 233 ms at
+// 16384, 8192 or 4096 (1 thread); city_block did not change.
+constexpr size_t kPendingTriangles = 16384;
 
 }  // namespace
 
@@ -158,6 +161,7 @@ struct CpuBackend::Impl {
   struct PendingDraw {
     SetupParams params;
     uint32_t triCount = 0;
+    uint32_t firstTri = 0;    // the slice's first triangle within its draw (draw() slices large draws)
     bool dense = false;
     uint32_t lo = 0;          // dense: the lowest index, vertex i of the draw is at lo + i
     size_t idx = 0, vtx = 0;  // offsets into pendingIdx and pendingIn / pendingOut
@@ -387,44 +391,50 @@ struct CpuBackend::Impl {
     scene.states.back()->drawSerial = drawSerial++;
     const DrawState& ds = *scene.states.back();
 
-    // Vertex indices of the draw, then the distinct vertices to shade. Shading every index of the
-    // draw's range keeps the vertex stage a pure function of the index.
-    const uint32_t n = triCount * 3;
-    PendingDraw pd;
-    pd.triCount = triCount;
-    pd.idx = pendingIdx.size;
-    uint32_t* const idx = pendingIdx.append(n);
-    for (uint32_t i = 0; i < n; ++i) idx[i] = d.indexed ? readIndex(d.first + i) : d.first + i;
-    uint32_t lo = idx[0], hi = idx[0];
-    for (uint32_t i = 0; i < n; ++i) lo = std::min(lo, idx[i]), hi = std::max(hi, idx[i]);
-    const bool dense = uint64_t(hi - lo) + 1 <= uint64_t(n) * 2;
-    const size_t shadeCount = dense ? size_t(hi - lo) + 1 : size_t(n);
-    pd.dense = dense, pd.lo = lo, pd.vtx = pendingIn.size, pd.shadeCount = shadeCount;
-    pd.vertexBuffer = buffers[vertexBuffer].get();
-    pd.layout = layout;
-    // Filled by shadePending: fetchVertex sets every attribute and the id, `out` is zeroed per chunk.
-    pendingIn.append(shadeCount);
-    pendingOut.append(shadeCount);
     const bool timing = scene.timeStages;
+    // A large draw goes through in slices of at most kPendingTriangles triangles, each with its own
+    // vertices, so that what setup reads was shaded moments before (a one-million-triangle draw shaded
+    // whole wrote 800 MB of vertices before setup read them back). A vertex two slices share is shaded
+    // in both, with the same result: the vertex stage is a pure function of the index. Slices start at
+    // multiples of kSetupChunk, so setup's chunks are the ones the whole draw would have.
+    static_assert(kPendingTriangles % kSetupChunk == 0, "a slice boundary is a chunk boundary");
+    for (uint32_t firstTri = 0; firstTri < triCount; firstTri += uint32_t(kPendingTriangles)) {
+      const uint32_t sliceTris = std::min<uint32_t>(triCount - firstTri, uint32_t(kPendingTriangles));
+      // Vertex indices of the slice, then the distinct vertices to shade. Shading every index of the
+      // slice's range keeps the vertex stage a pure function of the index.
+      const uint32_t n = sliceTris * 3;
+      const uint32_t firstIndex = d.first + 3 * firstTri;
+      PendingDraw pd;
+      pd.triCount = sliceTris;
+      pd.firstTri = firstTri;
+      pd.idx = pendingIdx.size;
+      uint32_t* const idx = pendingIdx.append(n);
+      for (uint32_t i = 0; i < n; ++i) idx[i] = d.indexed ? readIndex(firstIndex + i) : firstIndex + i;
+      uint32_t lo = idx[0], hi = idx[0];
+      for (uint32_t i = 0; i < n; ++i) lo = std::min(lo, idx[i]), hi = std::max(hi, idx[i]);
+      const bool dense = uint64_t(hi - lo) + 1 <= uint64_t(n) * 2;
+      const size_t shadeCount = dense ? size_t(hi - lo) + 1 : size_t(n);
+      pd.dense = dense, pd.lo = lo, pd.vtx = pendingIn.size, pd.shadeCount = shadeCount;
+      pd.vertexBuffer = buffers[vertexBuffer].get();
+      pd.layout = layout;
+      // Filled by shadePending: fetchVertex sets every attribute and the id, `out` is zeroed per chunk.
+      pendingIn.append(shadeCount);
+      pendingOut.append(shadeCount);
 
-    SetupParams& params = pd.params;
-    params.viewport = viewport;
-    params.clampRect = clampRect();
-    params.raster = raster;
-    params.stateIndex = stateIndex;
-    params.varyings = ds.varyings;
-    params.provenance = options.provenance;
-    params.timeStages = timing;
-    pending.push_back(pd);
-    pendingTris += triCount;
-    if (pendingTris >= kPendingTriangles) setupPending();
+      SetupParams& params = pd.params;
+      params.viewport = viewport;
+      params.clampRect = clampRect();
+      params.raster = raster;
+      params.stateIndex = stateIndex;
+      params.varyings = ds.varyings;
+      params.provenance = options.provenance;
+      params.timeStages = timing;
+      pending.push_back(pd);
+      pendingTris += sliceTris;
+      if (pendingTris >= kPendingTriangles) setupPending();
+    }
   }
 
-  // Sets up every pending draw and bins its triangles. Setup runs in parallel over fixed chunks of
-  // triangles (a chunk never spans two draws), each chunk into its own sink; the sinks are appended in
-  // chunk order, so the bins see the triangles in submission order whatever the thread count and
-  // however many draws wait (setup of one triangle never reads another's, and nothing between the
-  // draws touches the bins: a clear or a flush calls this first).
   // Shades the vertices of the pending draws that are not shaded yet, all in one parallel loop over
   // chunks of at most kVertexChunk vertices of one draw. Vertex shading has no cross-vertex state and
   // each draw's program reads its own snapshot, so when and in which task a vertex is shaded does not
@@ -500,7 +510,8 @@ struct CpuBackend::Impl {
             vin[k] = &in[s];
           }
           uint32_t layer = 0;
-          if (ds.program->hasGeometryStage() && !ds.program->shadeTriangle(v, t, layer, ds.ctx)) {
+          const uint32_t primitiveId = p.firstTri + t;  // gl_PrimitiveID: the triangle's place in its draw
+          if (ds.program->hasGeometryStage() && !ds.program->shadeTriangle(v, primitiveId, layer, ds.ctx)) {
             ++sink.stats.primitives_assembled;
             ++sink.stats.primitives_dropped_by_program;
             continue;
@@ -517,7 +528,7 @@ struct CpuBackend::Impl {
             layer = target.layer;  // gl_Layer is ignored for a non-layered target
           }
           const size_t first = sink.tris.size();
-          setupTriangle(v, t, layer, params, sink);
+          setupTriangle(v, primitiveId, layer, params, sink);
           if (params.provenance) {
             const uint64_t sig = depthSig(ds, vin, v, layer);
             for (size_t i = first; i < sink.tris.size(); ++i) sink.tris[i].depthSig = sig;

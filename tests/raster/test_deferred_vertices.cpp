@@ -1,7 +1,8 @@
 // The oracle shades the vertices of consecutive draws together, when their triangles are set up
-// (raster/cpu_backend.cpp, shadePending), not when each draw is recorded. A draw must still see the
-// vertex buffer and layout that were bound when it was issued, even if later draws bind others before
-// anything forces the pending draws through.
+// (raster/cpu_backend.cpp, shadePending), not when each draw is recorded, and takes a large draw in
+// slices. A draw must still see the vertex buffer and layout that were bound when it was issued, even
+// if later draws bind others before anything forces the pending draws through, and every triangle of
+// a sliced draw keeps its gl_PrimitiveID.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -85,6 +86,42 @@ TEST(DeferredVertices, EachDrawUsesTheVertexBufferAndLayoutBoundWhenItWasIssued)
     // Both triangles are drawn, each in its own corner: 2 x (14 x 14 / 2 pixels, about).
     EXPECT_GT(coloured(together.images[0]), 150) << threads << " threads";
     EXPECT_EQ(together.stats.triangles_binned, 2u);
+  }
+}
+
+TEST(DeferredVertices, ATriangleOfASlicedDrawKeepsItsPrimitiveIdWithinTheWholeDraw) {
+  // 40,000 triangles, each covering the centre of one pixel of a 256 x 256 target, in one draw: more
+  // than two slices (kPendingTriangles is 16384). object_id writes gl_PrimitiveID to attachment 1.
+  constexpr int kW = 256, kTris = 40000;
+  Mesh m;
+  for (int i = 0; i < kTris; ++i) {
+    const float x = float(i % kW), y = float(i / kW);
+    m.triangle({{x + 0.2f, y + 0.2f, 0}, {}, 7}, {{x + 0.9f, y + 0.2f, 0}, {}, 7}, {{x + 0.2f, y + 0.9f, 0}, {}, 7});
+  }
+  CommandList cl;
+  RenderTarget t;
+  t.color[0] = createTarget(cl, Format::R32UI, kW, kW);
+  t.color[1] = createTarget(cl, Format::R32UI, kW, kW);
+  cl.setRenderTarget(t);
+  cl.setViewport({0, 0, kW, kW});
+  const uint32_t n = bindMesh(cl, m);
+  cl.useProgram(cl.createProgram("object_id"));
+  setMatrix(cl, 0, ortho(0, kW, 0, kW, -1, 1));
+  cl.drawIndexed(0, n);
+  for (int threads : {1, 2}) {
+    const auto r = renderList(cl, threads);
+    ASSERT_EQ(r.images.size(), 2u);
+    const std::vector<uint8_t>& ids = r.images[1];  // top row first, one uint32 per pixel
+    ASSERT_EQ(ids.size(), size_t(kW) * kW * 4);
+    int wrong = 0;
+    for (int i = 0; i < kTris; ++i) {
+      const int x = i % kW, y = i / kW;
+      uint32_t id;
+      std::memcpy(&id, ids.data() + (size_t(kW - 1 - y) * kW + size_t(x)) * 4, 4);
+      if (id != uint32_t(i) && wrong++ < 5) ADD_FAILURE() << "triangle " << i << " wrote gl_PrimitiveID " << id;
+    }
+    EXPECT_EQ(wrong, 0) << threads << " threads";
+    EXPECT_EQ(r.stats.triangles_binned, uint64_t(kTris));
   }
 }
 
