@@ -173,7 +173,6 @@ struct CpuBackend::Impl {
     size_t firstChunk = 0;    // setupPending: the draw's first chunk among all pending chunks
   };
   std::vector<PendingDraw> pending;
-  size_t shadedDraws = 0;  // pending[0, shadedDraws) have their vertices shaded
   struct VertexChunk {
     size_t draw, begin, end;  // vertices [begin, end) of pending[draw]
   };
@@ -435,17 +434,15 @@ struct CpuBackend::Impl {
     }
   }
 
-  // Shades the vertices of the pending draws that are not shaded yet, all in one parallel loop over
+  // Shades the vertices of every pending draw (setupPending, first), all in one parallel loop over
   // chunks of at most kVertexChunk vertices of one draw. Vertex shading has no cross-vertex state and
   // each draw's program reads its own snapshot, so when and in which task a vertex is shaded does not
   // change a byte.
   void shadePending() {
-    if (shadedDraws == pending.size()) return;
     vertexChunks.clear();
-    for (size_t d = shadedDraws; d < pending.size(); ++d)
+    for (size_t d = 0; d < pending.size(); ++d)
       for (size_t b = 0; b < pending[d].shadeCount; b += kVertexChunk)
         vertexChunks.push_back({d, b, std::min(pending[d].shadeCount, b + kVertexChunk)});
-    shadedDraws = pending.size();
     const bool timing = scene.timeStages;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, vertexChunks.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
       const uint64_t t0 = timing ? stageClock() : 0;
@@ -546,7 +543,6 @@ struct CpuBackend::Impl {
       scratch.local().ticks.t[kStageClip] += clip;
     }
     pending.clear();
-    shadedDraws = 0;
     pendingTris = 0;
     pendingIdx.clear(), pendingIn.clear(), pendingOut.clear();
   }

@@ -5,7 +5,8 @@
 // fixed-point rules (sources, destination and factors clamped to [0, 1] for unorm targets,
 // §17.3.6.1); one round-half-to-even conversion to unorm8 from a double (§2.3.5.2, "round to
 // nearest" with ties to even chosen, docs/spec-choices.md); float targets unclamped and rounded to
-// float once; integer targets never blended (§17.3.6).
+// float once; integer targets never blended (§17.3.6). Also the source-over blend of an RGBA8 texel
+// computed directly (blendSourceOverRgba8, the same bytes as blend()), for the rasterizer's write.
 // Does not implement: stencil, logic op, colour masks, sRGB, dithering (GL's default dither is a
 // no-op here: §17.3.9 allows it to do nothing).
 #pragma once
