@@ -14,6 +14,7 @@
 #include <memory>
 #include <optional>
 #include <type_traits>
+#include <unordered_set>
 
 #include "raster/depth_signature.h"
 #include "raster/provenance.h"
@@ -35,6 +36,7 @@ void Scene::begin(const TargetView& t) {
   tilesX = (t.width + kTileSize - 1) / kTileSize;
   tilesY = (t.height + kTileSize - 1) / kTileSize;
   bins.resize(size_t(tilesX) * size_t(tilesY));  // reset() emptied them; their capacity stays for reuse
+  binSegment.assign(bins.size(), 0);
 }
 
 void Scene::reset() {
@@ -44,9 +46,12 @@ void Scene::reset() {
     spareBlocks.push_back(std::move(b));
   }
   triBlocks.clear();
+  blocks.clear();
   clears.clear();
   for (auto& b : bins) b.clear();
+  std::fill(binSegment.begin(), binSegment.end(), 0);
 }
+
 
 std::vector<TriSetup> Scene::takeSpareBlock() {
   if (spareBlocks.empty()) return {};
@@ -171,8 +176,15 @@ struct CpuBackend::Impl {
     const BufferData* vertexBuffer = nullptr;
     VertexLayout layout;
     size_t firstChunk = 0;    // setupPending: the draw's first chunk among all pending chunks
+    uint64_t segment = 0;     // Scene::segment when the draw was issued
   };
   std::vector<PendingDraw> pending;
+  // The textures and buffers that the scene's and the pending draws' work reads after draw() returns:
+  // every bound unit's texture (and a buffer texture's buffer) and the vertex buffer. An upload to
+  // one of them, or to the render target, flushes first; any other upload cannot change what the
+  // unexecuted work reads, so the scene grows on and a later draw may hide an earlier one's fragments
+  // before they are shaded (rast.cpp's visibility runs). Index buffers are read inside draw().
+  std::unordered_set<const void*> sceneReads;
   struct VertexChunk {
     size_t draw, begin, end;  // vertices [begin, end) of pending[draw]
   };
@@ -246,6 +258,15 @@ struct CpuBackend::Impl {
     // Integer sums: the total does not depend on how tiles were spread over threads.
     for (const PipelineStats& st : local) stats.add(st);
     scene.reset();
+    sceneReads.clear();
+  }
+
+  // Flushes when unexecuted work reads `resource` (a TextureData or BufferData; sceneReads).
+  void flushIfRead(const void* resource) {
+    bool read = sceneReads.count(resource) != 0;
+    for (const TextureData* c : scene.target.color) read = read || c == resource;
+    read = read || scene.target.depth == resource;
+    if (read) flush();
   }
 
   void setTarget(const RenderTarget& t) {
@@ -292,7 +313,7 @@ struct CpuBackend::Impl {
     // Bin into every tile the rectangle touches, in order with the triangles.
     for (int32_t ty = r.y >> kTileOrder; ty <= (r.y + r.h - 1) >> kTileOrder; ++ty)
       for (int32_t tx = r.x >> kTileOrder; tx <= (r.x + r.w - 1) >> kTileOrder; ++tx)
-        scene.bins[size_t(ty) * size_t(scene.tilesX) + size_t(tx)].push_back({op, 0, index});
+        scene.push(size_t(ty) * size_t(scene.tilesX) + size_t(tx), {op, 0, index}, scene.segment, stats);
   }
 
   std::unique_ptr<DrawState> snapshot() {
@@ -389,6 +410,12 @@ struct CpuBackend::Impl {
     scene.states.push_back(snapshot());
     scene.states.back()->drawSerial = drawSerial++;
     const DrawState& ds = *scene.states.back();
+    for (const TexUnit& u : ds.ctx.units)
+      if (u.tex) {
+        sceneReads.insert(u.tex);
+        if (u.tex->buffer) sceneReads.insert(u.tex->buffer);
+      }
+    sceneReads.insert(buffers[vertexBuffer].get());
 
     const bool timing = scene.timeStages;
     // A large draw goes through in slices of at most kPendingTriangles triangles, each with its own
@@ -416,6 +443,7 @@ struct CpuBackend::Impl {
       pd.dense = dense, pd.lo = lo, pd.vtx = pendingIn.size, pd.shadeCount = shadeCount;
       pd.vertexBuffer = buffers[vertexBuffer].get();
       pd.layout = layout;
+      pd.segment = scene.segment;
       // Filled by shadePending: fetchVertex sets every attribute and the id, `out` is zeroed per chunk.
       pendingIn.append(shadeCount);
       pendingOut.append(shadeCount);
@@ -495,6 +523,7 @@ struct CpuBackend::Impl {
         const VertexOut* const out = pendingOut.data.get() + p.vtx;
         SetupSink& sink = sinks[c];
         sink.clear();
+        sink.segment = p.segment;
         sink.tilesX = scene.tilesX;
         const uint32_t t0 = uint32_t((c - p.firstChunk) * kSetupChunk);
         const uint32_t t1 = std::min<uint32_t>(p.triCount, t0 + uint32_t(kSetupChunk));
@@ -583,7 +612,9 @@ struct CpuBackend::Impl {
         std::visit([&](const auto& c) { apply(list, c); }, cmd);
         continue;
       }
-      if (std::holds_alternative<UploadTexture>(cmd) || std::holds_alternative<UploadBuffer>(cmd)) flush();
+      // A flush an upload needs is not resource time.
+      if (const auto* u = std::get_if<UploadTexture>(&cmd)) flushIfRead(textures[u->id].get());
+      if (const auto* u = std::get_if<UploadBuffer>(&cmd)) flushIfRead(buffers[u->id].get());
       const Clock::time_point t0 = Clock::now();
       std::visit([&](const auto& c) { apply(list, c); }, cmd);
       resources += Clock::now() - t0;
@@ -598,9 +629,10 @@ struct CpuBackend::Impl {
     if (c.desc.kind == TextureKind::Buffer) textures[c.id]->buffer = buffers[c.desc.buffer].get();
   }
   void apply(const CommandList& l, const UploadTexture& c) {
-    flush();  // pending draws may sample the old contents
-    auto src = l.bytes(c.data);
     TextureData& t = *textures[c.id];
+    flushIfRead(&t);  // unexecuted draws may sample the old contents
+    ++scene.segment;
+    auto src = l.bytes(c.data);
     ++depthEpoch;
     const uint64_t bytes = levelBytes(t.desc, c.level);
     if (t.desc.compression != BcFormat::None) {
@@ -637,7 +669,8 @@ struct CpuBackend::Impl {
     buffers[c.id]->bytes = storage.take(size_t(c.size));
   }
   void apply(const CommandList& l, const UploadBuffer& c) {
-    flush();
+    flushIfRead(buffers[c.id].get());
+    ++scene.segment;
     auto src = l.bytes(c.data);
     std::memcpy(buffers[c.id]->bytes.data() + c.offset, src.data(), src.size());
   }

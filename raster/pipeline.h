@@ -96,33 +96,6 @@ struct TargetView {
   int32_t width = 0, height = 0;
 };
 
-struct Scene {
-  TargetView target;
-  bool provenance = false;  // track per-pixel intervals (provenance.h); bins use 1-px-wider bboxes
-  double edgeMarginSub = 0.0;  // provenance: tolerance::edgeMarginSub of the judged implementation
-  double vertexSnapPx = 0.0;   // provenance: tolerance::vertexSnapPx of the judged implementation
-  std::vector<std::unique_ptr<DrawState>> states;
-  // The set-up triangles, in blocks: one block is one setup sink's output (setup.h), moved in whole
-  // rather than copied, since a TriSetup is about 460 bytes and a setup-bound frame has millions.
-  // reset() returns the blocks to `spareBlocks` with their capacity, so steady frames allocate nothing.
-  std::vector<std::vector<TriSetup>> triBlocks;
-  std::vector<std::vector<TriSetup>> spareBlocks;
-  std::vector<ClearCmd> clears;
-  int32_t tilesX = 0, tilesY = 0;
-  std::vector<std::vector<TileCmd>> bins;
-  bool timeStages = false;  // RenderOptions::stageTimes: stages add their ticks to RastScratch::ticks
-  // LOD probe (lod_probe.h): the maps of the target's colour attachment 0, one per layer, or nullptr.
-  std::vector<LodMap>* lod = nullptr;
-
-  void begin(const TargetView& t);
-  bool empty() const { return triBlocks.empty() && clears.empty(); }
-  void reset();
-  const TriSetup& tri(const TileCmd& c) const { return triBlocks[c.index][c.slot]; }
-  // An empty block for a setup sink to fill: a spare one (with capacity) when there is one.
-  // Draws hand them to their sinks before setup (cpu_backend.cpp).
-  std::vector<TriSetup> takeSpareBlock();
-};
-
 // Counters of what the pipeline did (deterministic: integer sums, independent of threads).
 struct PipelineStats {
   uint64_t primitives_assembled = 0;     // triangles formed from draws
@@ -136,8 +109,56 @@ struct PipelineStats {
   uint64_t fragments_depth_failed = 0;
   uint64_t fragments_discarded = 0;
   uint64_t pixels_written = 0;
-  uint64_t tiles_rasterized = 0;
+  uint64_t tiles_rasterized = 0;         // bins with work, per upload segment (Scene::segment)
   void add(const PipelineStats& o);
 };
+
+struct Scene {
+  TargetView target;
+  bool provenance = false;  // track per-pixel intervals (provenance.h); bins use 1-px-wider bboxes
+  double edgeMarginSub = 0.0;  // provenance: tolerance::edgeMarginSub of the judged implementation
+  double vertexSnapPx = 0.0;   // provenance: tolerance::vertexSnapPx of the judged implementation
+  std::vector<std::unique_ptr<DrawState>> states;
+  // The set-up triangles, in blocks: one block is one setup sink's output (setup.h), moved in whole
+  // rather than copied, since a TriSetup is about 460 bytes and a setup-bound frame has millions.
+  // reset() returns the blocks to `spareBlocks` with their capacity, so steady frames allocate nothing.
+  std::vector<std::vector<TriSetup>> triBlocks;
+  std::vector<std::vector<TriSetup>> spareBlocks;
+  // Per block of triBlocks (one setup chunk of one draw): what the rasterizer asks of a bin's triangles
+  // without reading their TriSetups (a miss to memory each, in a setup-bound frame).
+  struct BlockInfo {
+    uint32_t drawState;      // every triangle of a block has the draw's state
+    uint32_t meanBoxPixels;  // the mean pixel count of its triangles' bounding boxes
+  };
+  std::vector<BlockInfo> blocks;
+  std::vector<ClearCmd> clears;
+  int32_t tilesX = 0, tilesY = 0;
+  std::vector<std::vector<TileCmd>> bins;
+  // PipelineStats::tiles_rasterized counts the bins with work afresh after every texture or buffer
+  // upload, as if each upload ended the scene. Uploads used to flush; now only one that unexecuted work
+  // reads does (cpu_backend.cpp), and the counter keeps its meaning for any flush policy.
+  uint64_t segment = 1;              // advanced by every upload
+  std::vector<uint64_t> binSegment;  // per bin: the segment of its last command (0: none since reset)
+  bool timeStages = false;  // RenderOptions::stageTimes: stages add their ticks to RastScratch::ticks
+  // LOD probe (lod_probe.h): the maps of the target's colour attachment 0, one per layer, or nullptr.
+  std::vector<LodMap>* lod = nullptr;
+
+  void begin(const TargetView& t);
+  bool empty() const { return triBlocks.empty() && clears.empty(); }
+  void reset();
+  const TriSetup& tri(const TileCmd& c) const { return triBlocks[c.index][c.slot]; }
+  // Appends c to bin `b`, issued in upload segment `seg`, and counts a bin new to that segment.
+  void push(size_t b, const TileCmd& c, uint64_t seg, PipelineStats& stats) {
+    bins[b].push_back(c);
+    if (binSegment[b] != seg) {
+      binSegment[b] = seg;
+      ++stats.tiles_rasterized;
+    }
+  }
+  // An empty block for a setup sink to fill: a spare one (with capacity) when there is one.
+  // Draws hand them to their sinks before setup (cpu_backend.cpp).
+  std::vector<TriSetup> takeSpareBlock();
+};
+
 
 }  // namespace tessera::detail

@@ -100,6 +100,14 @@ class Program {
   // range at every fragment that read a texel carrying an interval (INPUT_INTERVAL); where every texel
   // it read is exact, its single result is exact.
   virtual bool monotoneInSamples() const { return true; }
+  // The fragment stage may set QuadOut::discard under the draw's uniforms (ctx). False lets the
+  // rasterizer shade only the fragments that stay visible at the end of a run of such draws
+  // (rast.cpp, "visibility runs"); a program that can discard must keep the default, since its
+  // fragments' depth writes then depend on shading.
+  virtual bool mayDiscard(const ShadeContext& ctx) const {
+    (void)ctx;
+    return true;
+  }
 
   virtual void shadeVertices(std::span<const VertexIn> in, std::span<VertexOut> out, const ShadeContext& ctx) const = 0;
   // Optional geometry stage, once per triangle after vertex shading and before clipping. May change

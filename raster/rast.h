@@ -7,7 +7,9 @@
 // the same way; a block's quads at once through interpolate_simd.h, or per quad below under the
 // "reference" SIMD target), early depth test (equivalent to the late test for programs that write
 // no depth; a program that writes gl_FragDepth gets the late test on its value, spec-choices F11),
-// fragment shading in batches, then fragops.h per pixel.
+// fragment shading in batches, then fragops.h per pixel. Consecutive triangles whose fragments'
+// fate does not depend on shading (no blending, no discard, no gl_FragDepth) run as a visibility run:
+// coverage and depth first, then only the fragments that stay visible are shaded.
 // A tile owns its pixels, so tiles run in parallel and the result is independent of thread count.
 // Does not implement: setup or binning (setup.h).
 #pragma once
@@ -50,6 +52,17 @@ struct RastScratch {
   QuadPixels px;
   alignas(64) float z[QuadPixels::kMax] = {};
   alignas(64) float var[kMaxVaryings * QuadPixels::kMax] = {};
+  // A visibility run (rast.cpp): per pixel of the tile (row-major, kTileSize wide), 1 + the run index
+  // of the triangle whose fragment is the last to pass the depth test, 0 for none.
+  alignas(64) uint16_t owner[kTileSize * kTileSize] = {};
+  // The quads each owner shades (groupOwnedQuads in rast.cpp): x, y of the quad, the owned pixels.
+  struct OwnedQuad {
+    int32_t x, y;
+    uint8_t mask;
+    uint16_t id;
+  };
+  std::vector<OwnedQuad> ownedQuads, ownedTemp;
+  std::vector<uint32_t> ownedStart, ownedFill;
 };
 
 void rasterizeTile(const Scene& scene, size_t tileIndex, RastScratch& scratch, PipelineStats& stats);

@@ -130,6 +130,7 @@ void binTriangle(WindowVertex w0, WindowVertex w1, WindowVertex w2, const Vertex
     return;
   }
   sink.tileEnd.push_back(uint32_t(sink.tiles.size()));
+  sink.boxPixels += uint64_t(x1 - x0 + 1) * uint64_t(y1 - y0 + 1);
   ++stats.triangles_binned;
   binned = true;
 }
@@ -206,11 +207,12 @@ void appendToScene(SetupSink& sink, Scene& scene, PipelineStats& stats) {
   if (count == 0) return;
   assert(count <= size_t(UINT16_MAX) + 1);  // TileCmd::slot; cpu_backend.cpp bounds a chunk's output
   const uint32_t block = uint32_t(scene.triBlocks.size());
+  scene.blocks.push_back({sink.tris[0].drawState, uint32_t(std::min<uint64_t>(sink.boxPixels / count, UINT32_MAX))});
   scene.triBlocks.push_back(std::exchange(sink.tris, {}));
   uint32_t begin = 0;
   for (size_t i = 0; i < count; ++i) {
     for (uint32_t k = begin; k < sink.tileEnd[i]; ++k)
-      scene.bins[sink.tiles[k]].push_back({TileOp::Triangle, uint16_t(i), block});
+      scene.push(sink.tiles[k], {TileOp::Triangle, uint16_t(i), block}, sink.segment, stats);
     begin = sink.tileEnd[i];
   }
 }

@@ -33,7 +33,10 @@ struct SetupSink {
   std::vector<uint32_t> tileEnd;   // per triangle: end of its run in `tiles`
   PipelineStats stats;
   uint64_t clipTicks = 0;  // SetupParams::timeStages
+  uint64_t segment = 0;    // the upload segment of the draw (Scene::segment), for appendToScene
+  uint64_t boxPixels = 0;  // the pixels of the binned triangles' bounding boxes, summed (Scene::BlockInfo)
   void clear() {
+    boxPixels = 0;
     tris.clear();
     tiles.clear();
     tileEnd.clear();

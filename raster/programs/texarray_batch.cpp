@@ -31,6 +31,8 @@ class TexarrayBatch final : public Program {
  public:
   std::string_view name() const override { return "texarray_batch"; }
   int varyingCount() const override { return 3; }
+  // Only the materials layout has an alpha cutoff (per TAM entry, so any draw in it may discard).
+  bool mayDiscard(const ShadeContext& ctx) const override { return ctx.uniforms[4][0] == 1.0f; }
   void shadeVertices(std::span<const VertexIn> in, std::span<VertexOut> out, const ShadeContext& ctx) const override {
     for (size_t i = 0; i < in.size(); ++i) {
       out[i].pos = mulMat4(ctx.uniforms, 0, in[i].attr[0]);

@@ -1,11 +1,15 @@
 // Test helpers: render a command list on the oracle and read back its presented images.
 #pragma once
 
+#include <gtest/gtest.h>
+
+#include <cstring>
 #include <string>
 #include <vector>
 
 #include "raster/cpu_backend.h"
 #include "raster/image_io.h"
+#include "raster/simd_targets.h"
 
 namespace tessera::testing {
 
@@ -26,6 +30,21 @@ inline Rendered renderList(const CommandList& list, int threads) {
   }
   r.stats = b.stats();
   return r;
+}
+
+// Restores the best SIMD target when a test ends, whatever it forced.
+struct SimdTargetGuard {
+  SimdTargetGuard() = default;
+  SimdTargetGuard(const SimdTargetGuard&) = delete;
+  SimdTargetGuard& operator=(const SimdTargetGuard&) = delete;
+  ~SimdTargetGuard() { simd::forceTarget("best"); }
+};
+
+// Every pipeline counter of a equals b's; `what` names the comparison in the failure.
+inline void expectSameCounters(const detail::PipelineStats& a, const detail::PipelineStats& b, const std::string& what) {
+  // Plain integer counters without padding: bytewise equality is field equality.
+  static_assert(sizeof(detail::PipelineStats) == 12 * sizeof(uint64_t));
+  EXPECT_EQ(std::memcmp(&a, &b, sizeof a), 0) << what << ": the pipeline counters differ";
 }
 
 }  // namespace tessera::testing

@@ -20,12 +20,6 @@ struct NamedFrame {
   CommandList list;
 };
 
-void expectSameStats(const detail::PipelineStats& a, const detail::PipelineStats& b, const std::string& frame) {
-  // Plain integer counters without padding: bytewise equality is field equality.
-  static_assert(sizeof(detail::PipelineStats) == 12 * sizeof(uint64_t));
-  EXPECT_EQ(std::memcmp(&a, &b, sizeof a), 0) << frame << ": counters differ from a new backend's";
-}
-
 }  // namespace
 
 TEST(BackendReuse, EveryFrameOfASequenceHasTheBytesAndCountersOfANewBackend) {
@@ -50,7 +44,7 @@ TEST(BackendReuse, EveryFrameOfASequenceHasTheBytesAndCountersOfANewBackend) {
         EXPECT_EQ(imageSha256(*reused.texture(presented[i].texture), presented[i].level, presented[i].layer),
                   fresh.hashes[i])
             << f.name << " at " << threads << " threads, image " << i;
-      expectSameStats(reused.stats(), fresh.stats, f.name);
+      testing::expectSameCounters(reused.stats(), fresh.stats, f.name + ": reused backend against a new one");
     }
   }
 }

@@ -20,15 +20,11 @@
 #include "raster/sample_detail.h"
 #include "raster/sample_simd.h"
 #include "raster/simd_targets.h"
+#include "tests/raster/render_helpers.h"
 #include "tools/scenes/scene_goldens.h"
 
 namespace tessera {
 namespace {
-
-// Restores the best target when a test ends, whatever it forced.
-struct SimdTargetGuard {
-  ~SimdTargetGuard() { simd::forceTarget("best"); }
-};
 
 TextureData simdTestTexture(uint32_t w, uint32_t h, uint32_t layers, uint32_t seed) {
   TextureDesc d;
@@ -121,7 +117,7 @@ struct SimdCase {
 };
 
 TEST(SimdSample, EveryTargetGivesTheReferenceBitsOnRandomAndTieQuads) {
-  SimdTargetGuard guard;
+  const testing::SimdTargetGuard guard;
   const SimdCase cases[] = {
       {"trilinear repeat 64x32", 64, 32, 1, Filter::LinearMipmapLinear, Filter::Linear, Wrap::Repeat, Wrap::Repeat},
       {"bilinear repeat 16x128", 16, 128, 1, Filter::Linear, Filter::Linear, Wrap::Repeat, Wrap::Repeat},
@@ -162,7 +158,7 @@ TEST(SimdSample, EveryTargetGivesTheReferenceBitsOnRandomAndTieQuads) {
 sample_detail::Plan simdTestPlan(const TexUnit& u, int32_t lambda8) { return sample_detail::makePlan(u, lambda8); }
 
 TEST(SimdSample, TheKernelTakesRepeatOnPowersOfTwoAndClampToEdgeAndDeclinesTheRest) {
-  SimdTargetGuard guard;
+  const testing::SimdTargetGuard guard;
   const TextureData pot = simdTestTexture(32, 16, 1, 3), npot = simdTestTexture(24, 20, 1, 4);
   const float s[4] = {0.1f, 0.2f, 0.3f, 0.4f}, t[4] = {0.5f, 0.6f, 0.7f, -0.8f};
   float out[4][4];
@@ -190,7 +186,7 @@ TEST(SimdSample, TheKernelTakesRepeatOnPowersOfTwoAndClampToEdgeAndDeclinesTheRe
 }
 
 TEST(SimdSample, AnUnknownTargetIsAClearErrorNamingTheAvailableOnes) {
-  SimdTargetGuard guard;
+  const testing::SimdTargetGuard guard;
   try {
     simd::forceTarget("neon9");
     FAIL() << "no error";
@@ -207,7 +203,7 @@ TEST(SimdSample, AnUnknownTargetIsAClearErrorNamingTheAvailableOnes) {
 class SimdGoldens : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(SimdGoldens, EveryGoldenImageIsReproducedBitExactly) {
-  SimdTargetGuard guard;
+  const testing::SimdTargetGuard guard;
   simd::forceTarget(GetParam());
   golden::GoldenOptions o;
   o.sceneImages = scenes::allSceneImages();

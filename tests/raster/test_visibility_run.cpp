@@ -1,0 +1,191 @@
+// Visibility runs (raster/rast.cpp): consecutive triangles without blending, discard or gl_FragDepth
+// are walked for coverage and depth first, and only the fragments still visible at the run's end are
+// shaded. The bytes and every counter must be the immediate walk's, which the "reference" SIMD target
+// takes (it has no interpolation kernels, so no triangle joins a run). Uploads flush only when
+// unexecuted work reads what they write (raster/cpu_backend.cpp), and tiles_rasterized keeps counting
+// bins per upload segment.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "raster/simd_targets.h"
+#include "tests/raster/render_helpers.h"
+#include "tools/scenes/builder.h"
+
+namespace tessera::scenes {
+using tessera::testing::expectSameCounters;
+using tessera::testing::Rendered;
+using tessera::testing::renderList;
+using tessera::testing::SimdTargetGuard;
+
+namespace {
+
+// An odd size: two by two tiles, the right and top ones partial, with quads past the last column and row.
+constexpr int kW = 97, kH = 79;
+
+// What can break a run, or must be handled inside one, at layer `i` of the frame.
+struct Layers {
+  bool depthTest = true;
+  int noDepthWrite = -1;  // this layer passes the test but does not write depth
+  int discard = -1;       // this layer discards (alpha cutoff 0.9; its filtered alpha is 0.16 to 1)
+  int blend = -1;         // this layer blends (source over)
+  bool uploads = false;   // an unrelated texture upload, then a re-upload of layer 0's texture, mid-frame
+};
+
+// Six full-target textured layers (two triangles each, so quads on the diagonal hold pixels of both)
+// at depths that make some later layers hidden and some visible, each with its own texture and
+// texture scale, trilinear; then a smaller tilted triangle in front over part of them.
+CommandList layeredFrame(const Layers& o) {
+  CommandList cl;
+  RenderTarget t;
+  t.color[0] = createTarget(cl, Format::RGBA8, kW, kH);
+  t.depth = createTarget(cl, Format::D32F, kW, kH);
+  cl.setRenderTarget(t);
+  cl.setViewport({0, 0, kW, kH});
+  cl.clearColor(0, {0.1f, 0.2f, 0.3f, 1});
+  cl.clearDepth(1.0f);
+  const float z[6] = {0.5f, 0.7f, 0.2f, 0.3f, -0.4f, 0.1f};
+  Mesh m;
+  for (int i = 0; i < 6; ++i)
+    m.quad({-1, -1, z[i]}, {1, -1, z[i]}, {1, 1, z[i]}, {-1, 1, z[i]}, {0, 0, 0, 0}, {3 + i, 0, 0, 0}, {3 + i, 2 + i, 0, 0},
+           {0, 2 + i, 0, 0});
+  m.triangle({{-0.8f, -0.9f, -0.9f}, {0, 0, 0, 0}, 0}, {{0.9f, -0.2f, -0.9f}, {5, 0, 0, 0}, 0},
+             {{-0.3f, 0.95f, -0.9f}, {0, 5, 0, 0}, 0});
+  bindMesh(cl, m);
+  cl.useProgram(cl.createProgram("textured"));
+  setMatrix(cl, 0, glm::mat4(1.0f));
+  setTexturedDefaults(cl);
+  SamplerState s;
+  s.minFilter = Filter::LinearMipmapLinear;
+  cl.bindSampler(0, cl.createSampler(s));
+  std::vector<ResourceId> tex;
+  for (int i = 0; i < 7; ++i) {
+    // Half the cells nearly transparent: the discarding layer keeps some fragments and drops others.
+    tex.push_back(uploadTexture(cl, checker(32, 32, uint32_t(2 + i), {uint8_t(40 * i), 200, 90, 255},
+                                            {250, uint8_t(30 * i), 60, 40}), true));
+  }
+  for (int i = 0; i < 7; ++i) {
+    DepthState d;
+    d.test = o.depthTest;
+    d.write = i != o.noDepthWrite;
+    cl.setDepthState(d);
+    BlendState b;
+    if (i == o.blend) {
+      b.enabled = true;
+      b.srcRgb = b.srcAlpha = BlendFactor::SrcAlpha;
+      b.dstRgb = b.dstAlpha = BlendFactor::OneMinusSrcAlpha;
+    }
+    cl.setBlendState(b);
+    setVec4(cl, 8, {0, i == o.discard ? 0.9f : 0.0f, 0, 0});
+    if (o.uploads && i == 3) {
+      uploadTexture(cl, checker(8, 8, 1, {1, 2, 3, 4}, {5, 6, 7, 8}), false);  // read by nothing: no flush
+      const RgbaImage img = checker(32, 32, 5, {10, 20, 30, 255}, {200, 210, 220, 255});
+      cl.uploadTexture(tex[0], 0, 0, img.rgba);  // layer 0 samples tex[0]: its level 0 changes after it ran
+    }
+    cl.bindTexture(0, tex[size_t(i)]);
+    cl.drawIndexed(6 * uint32_t(i), i < 6 ? 6 : 3);
+  }
+  return cl;
+}
+
+void expectImmediateBytes(const Layers& o, const std::string& what) {
+  const SimdTargetGuard guard;
+  const CommandList cl = layeredFrame(o);
+  simd::forceTarget("reference");
+  const Rendered immediate = renderList(cl, 1);
+  if (o.discard >= 0) EXPECT_GT(immediate.stats.fragments_discarded, 0u) << what << ": the frame must discard";
+  simd::forceTarget("best");
+  ASSERT_NE(simd::activeTarget(), "reference") << "this machine has no SIMD target: nothing to compare";
+  for (int threads : {1, 2, 7}) {
+    const Rendered runs = renderList(cl, threads);
+    ASSERT_EQ(runs.hashes.size(), 1u);
+    EXPECT_EQ(runs.hashes[0], immediate.hashes[0]) << what << ", " << threads << " threads";
+    expectSameCounters(runs.stats, immediate.stats, what + ", " + std::to_string(threads) + " threads");
+  }
+}
+
+}  // namespace
+
+TEST(VisibilityRun, HiddenLayersGiveTheImmediateWalksBytesAndCounters) {
+  expectImmediateBytes({}, "depth test");
+  expectImmediateBytes({.depthTest = false}, "no depth test (the last layer wins)");
+  expectImmediateBytes({.noDepthWrite = 2}, "a layer without depth writes");
+}
+
+TEST(VisibilityRun, ADiscardingOrBlendingDrawEndsTheRunAndStillGetsTheImmediateBytes) {
+  // A discarding layer that joined a run would own pixels whose fragments it then discards, and those
+  // pixels would show the clear colour instead of the layer below.
+  expectImmediateBytes({.discard = 4}, "discard in the middle");
+  expectImmediateBytes({.blend = 4}, "blend in the middle");
+  expectImmediateBytes({.noDepthWrite = 1, .discard = 4, .blend = 5}, "all three");
+}
+
+TEST(VisibilityRun, UploadsMidFrameGiveTheImmediateBytes) {
+  expectImmediateBytes({.uploads = true}, "uploads");
+}
+
+TEST(LazyFlush, AnUploadToATextureThatAnUnexecutedDrawSamplesLetsThatDrawSeeTheOldTexels) {
+  // Left half: a draw samples texture T (one level, one colour); then T is uploaded with another colour
+  // and the right half samples it. Each half must show the colour T had when its draw was issued.
+  constexpr int kS = 64;
+  CommandList cl;
+  RenderTarget t;
+  t.color[0] = createTarget(cl, Format::RGBA8, kS, kS);
+  cl.setRenderTarget(t);
+  cl.setViewport({0, 0, kS, kS});
+  cl.clearColor(0, {0, 0, 0, 1});
+  Mesh m;
+  m.quad({-1, -1, 0}, {0, -1, 0}, {0, 1, 0}, {-1, 1, 0}, {0, 0, 0, 0}, {1, 0, 0, 0}, {1, 1, 0, 0}, {0, 1, 0, 0});
+  m.quad({0, -1, 0}, {1, -1, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 0, 0}, {1, 0, 0, 0}, {1, 1, 0, 0}, {0, 1, 0, 0});
+  bindMesh(cl, m);
+  cl.useProgram(cl.createProgram("textured"));
+  setMatrix(cl, 0, glm::mat4(1.0f));
+  setTexturedDefaults(cl);
+  const ResourceId tex = uploadTexture(cl, checker(4, 4, 4, {255, 0, 0, 255}, {255, 0, 0, 255}), false);
+  cl.bindTexture(0, tex);
+  cl.drawIndexed(0, 6);
+  const RgbaImage green = checker(4, 4, 4, {0, 255, 0, 255}, {0, 255, 0, 255});
+  cl.uploadTexture(tex, 0, 0, green.rgba);
+  cl.drawIndexed(6, 6);
+  for (int threads : {1, 2}) {
+    const Rendered r = renderList(cl, threads);
+    ASSERT_EQ(r.images.size(), 1u);
+    const std::vector<uint8_t>& img = r.images[0];
+    const size_t row = size_t(kS / 2) * kS * 4;
+    const uint8_t* left = img.data() + row + size_t(kS / 4) * 4;
+    const uint8_t* right = img.data() + row + size_t(3 * kS / 4) * 4;
+    EXPECT_EQ(int(left[0]), 255) << threads << " threads: the left draw saw the new texels";
+    EXPECT_EQ(int(left[1]), 0) << threads << " threads";
+    EXPECT_EQ(int(right[0]), 0) << threads << " threads";
+    EXPECT_EQ(int(right[1]), 255) << threads << " threads";
+  }
+}
+
+TEST(LazyFlush, TilesRasterizedCountsTheBinsOfEachUploadSegmentAsBefore) {
+  // 128 x 128 is four tiles. Clear (segment 1: 4 bins), an upload read by nothing, then a draw over
+  // every tile (segment 2: 4 more), then an upload and a draw over the bottom-left tile only (1 more).
+  // Before uploads flushed only when needed, each upload ended the scene, which gave these nine.
+  constexpr int kS = 128;
+  CommandList cl;
+  RenderTarget t;
+  t.color[0] = createTarget(cl, Format::RGBA8, kS, kS);
+  cl.setRenderTarget(t);
+  cl.setViewport({0, 0, kS, kS});
+  cl.clearColor(0, {0, 0, 0, 1});
+  Mesh m;
+  m.quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, {}, {}, {}, {});
+  m.quad({-0.9f, -0.9f, 0}, {-0.1f, -0.9f, 0}, {-0.1f, -0.1f, 0}, {-0.9f, -0.1f, 0}, {}, {}, {}, {});
+  bindMesh(cl, m);
+  cl.useProgram(cl.createProgram("flat_color"));
+  setMatrix(cl, 0, glm::mat4(1.0f));
+  setVec4(cl, 4, {1, 1, 0, 1});
+  uploadTexture(cl, checker(4, 4, 1, {1, 2, 3, 4}, {5, 6, 7, 8}), false);
+  cl.drawIndexed(0, 6);
+  uploadTexture(cl, checker(4, 4, 1, {1, 2, 3, 4}, {5, 6, 7, 8}), false);
+  cl.drawIndexed(6, 6);
+  EXPECT_EQ(renderList(cl, 1).stats.tiles_rasterized, 9u);
+  EXPECT_EQ(renderList(cl, 2).stats.tiles_rasterized, 9u);
+}
+
+}  // namespace tessera::scenes
