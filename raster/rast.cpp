@@ -155,6 +155,7 @@ class TriangleRasterizer {
     tileX0_ = tile.x0, tileY0_ = tile.y0;
     for (int i = 0; i < 3; ++i) edges_.dx[i] = t_.a[i] * kStep, edges_.dy[i] = t_.b[i] * kStep, edges_.bias[i] = t_.bias[i];
     edges_.setSteps();
+    setQuadSteps();
     for (int32_t by = y0 & ~(kBlockSize - 1); by <= y1; by += kBlockSize)
       for (int32_t bx = x0 & ~(kBlockSize - 1); bx <= x1; bx += kBlockSize) block(bx, by, x0, y0, x1, y1);
     flush();
@@ -165,14 +166,11 @@ class TriangleRasterizer {
   void shadeOwned(const TileRect& tile, const RastScratch::OwnedQuad* quads, size_t n) {
     xLast_ = tile.x1, yLast_ = tile.y1;
     tileX0_ = tile.x0, tileY0_ = tile.y0;
+    setQuadSteps();
     for (size_t j = 0; j < n; ++j) {
       const RastScratch::OwnedQuad& oq = quads[j];
-      int64_t e[4][3];
-      for (int i = 0; i < 3; ++i) {
-        const int64_t eq = edgeAt(i, oq.x, oq.y), dx = t_.a[i] * kStep, dy = t_.b[i] * kStep;
-        e[0][i] = eq, e[1][i] = eq + dx, e[2][i] = eq + dy, e[3][i] = eq + dx + dy;
-      }
-      gather(oq.x, oq.y, oq.mask, e);
+      const int64_t eq[3] = {edgeAt(0, oq.x, oq.y), edgeAt(1, oq.x, oq.y), edgeAt(2, oq.x, oq.y)};
+      gather(oq.x, oq.y, oq.mask, eq);
       if (pending_ == QuadPixels::kMax / 4) runGathered();
     }
     runGathered();
@@ -235,14 +233,14 @@ class TriangleRasterizer {
         const uint64_t bits = mask >> (8 * ry + rx);
         const uint8_t cov = uint8_t((bits & 3) | (bits >> 8 & 3) << 2);
         if (!cov) continue;
-        int64_t e[4][3];
-        for (int i = 0; i < 3; ++i) {
-          const int64_t eq = be.e0[i] + rx * be.dx[i] + ry * be.dy[i];
-          e[0][i] = eq, e[1][i] = eq + be.dx[i], e[2][i] = eq + be.dy[i], e[3][i] = eq + be.dx[i] + be.dy[i];
-        }
+        int64_t eq[3];  // the edge values at the quad's pixel 0
+        for (int i = 0; i < 3; ++i) eq[i] = be.e0[i] + rx * be.dx[i] + ry * be.dy[i];
         if (gathered_) {
-          gather(bx + rx, by + ry, cov, e);
+          gather(bx + rx, by + ry, cov, eq);
         } else {
+          int64_t e[4][3];
+          for (int i = 0; i < 3; ++i)
+            for (int p = 0; p < 4; ++p) e[p][i] = eq[i] + quadStep_[i][p];
           quad(bx + rx, by + ry, cov, e);
         }
       }
@@ -288,12 +286,23 @@ class TriangleRasterizer {
     return uint8_t(pass);
   }
 
-  // Appends a covered quad of the block to the kernels' input (RastScratch::px, pixel 4 j + p).
-  void gather(int32_t qx, int32_t qy, uint8_t cov, const int64_t (&e)[4][3]) {
+  // The edge steps from a quad's pixel 0 to its pixels 0..3: 0, one right, one up, both (exact integers).
+  void setQuadSteps() {
+    for (int i = 0; i < 3; ++i) {
+      const int64_t dx = t_.a[i] * kStep, dy = t_.b[i] * kStep;
+      quadStep_[i][0] = 0, quadStep_[i][1] = dx, quadStep_[i][2] = dy, quadStep_[i][3] = dx + dy;
+    }
+  }
+
+  // Appends a covered quad of the block to the kernels' input (RastScratch::px, pixel 4 j + p), from
+  // the edge values eq at its pixel 0: four consecutive values per edge, which compile to vector adds.
+  void gather(int32_t qx, int32_t qy, uint8_t cov, const int64_t (&eq)[3]) {
     const size_t j = pending_++;
     s_.pending[j] = {qx, qy, cov};
-    for (int i = 0; i < 3; ++i)
-      for (int p = 0; p < 4; ++p) s_.px.e[i][4 * j + size_t(p)] = e[p][i];
+    for (int i = 0; i < 3; ++i) {
+      int64_t* dst = s_.px.e[i] + 4 * j;
+      for (int p = 0; p < 4; ++p) dst[p] = eq[i] + quadStep_[i][p];
+    }
   }
 
   // The block's gathered quads, in the order quad() would have taken them, with the same results:
@@ -488,6 +497,7 @@ class TriangleRasterizer {
   size_t pending_ = 0;  // quads gathered from the block being walked
   int32_t xLast_ = 0, yLast_ = 0;  // the tile's last column and row (inside the target)
   BlockEdges edges_;  // the coverage kernel's input (raster/coverage_simd.h)
+  int64_t quadStep_[3][4];  // setQuadSteps
   Plane depth_;
   Plane color_[kMaxColorAttachments];
   size_t count_ = 0;

@@ -449,7 +449,7 @@ void sampleN(const TexUnit& u, const Plan& p, int n, const float* s, const float
       if (n == 4 && p.linear && !border && layers[0] == layers[1] && layers[0] == layers[2] &&
           layers[0] == layers[3]) {
         const sample_simd::Rgba8LinearFn kernel = t_rgba8KernelSet ? t_rgba8Kernel : sample_simd::rgba8LinearKernel();
-        if (kernel && kernel(p, layers[0] > p.lastLayer ? p.lastLayer : layers[0], s, t, out)) return;
+        if (kernel && kernel(p, layers[0] > p.lastLayer ? p.lastLayer : layers[0], s, t, 4, out)) return;
       }
       return sampleEach<Format::RGBA8>(border, p, n, s, t, layers, out);
     case Format::R8: return sampleEach<Format::R8>(border, p, n, s, t, layers, out);
@@ -557,6 +557,41 @@ struct PlanCache {
 };
 constinit thread_local PlanCache t_planCache;
 
+// The quad's coarse derivatives (docs/spec-choices.md T1, llvmpipe's quad_lod): ddx = c[1] - c[0],
+// ddy = c[2] - c[0], in double, of u = s * w_base, v = t * h_base (GL 4.6 §8.14.1; the array layer is
+// not part of rho).
+struct QuadDerivatives {
+  double dudx, dvdx, dudy, dvdy;
+  QuadDerivatives(const TexUnit& u, const float s[4], const float t[4]) {
+    const double W = double(u.tex->desc.width), H = double(u.tex->desc.height);
+    dudx = (double(s[1]) - double(s[0])) * W;
+    dvdx = (double(t[1]) - double(t[0])) * H;
+    dudy = (double(s[2]) - double(s[0])) * W;
+    dvdy = (double(t[2]) - double(t[0])) * H;
+  }
+  bool finite() const { return std::isfinite(dudx) && std::isfinite(dvdx) && std::isfinite(dudy) && std::isfinite(dvdy); }
+};
+
+// Brings the open plan cache to the quad's lambda and plan; false, leaving it alone, when a derivative
+// is not finite (the caller then computes them without the cache).
+bool updatePlanCache(const TexUnit& u, const QuadDerivatives& d, float bias) {
+  PlanCache& cache = t_planCache;
+  if (!d.finite()) return false;
+  // rho^2 exactly as computeLambda forms it (same operands, same order).
+  const double rx = d.dudx * d.dudx + d.dvdx * d.dvdx;
+  const double ry = d.dudy * d.dudy + d.dvdy * d.dvdy;
+  const uint64_t rho2Bits = std::bit_cast<uint64_t>(rx > ry ? rx : ry);
+  const uint32_t biasBits = std::bit_cast<uint32_t>(bias);
+  const bool valid = cache.validEpoch == cache.epoch && cache.unit == &u;
+  if (!valid || cache.rho2Bits != rho2Bits || cache.biasBits != biasBits) {
+    const int32_t lambda8 = computeLambda(d.dudx, d.dvdx, d.dudy, d.dvdy, u.sampler, bias);
+    if (!valid || cache.lambda8 != lambda8) cache.plan = makePlan(u, lambda8);
+    cache.unit = &u, cache.rho2Bits = rho2Bits, cache.biasBits = biasBits, cache.lambda8 = lambda8;
+    cache.validEpoch = cache.epoch;
+  }
+  return true;
+}
+
 // Implicit-LOD quad lookup shared by the 2D and 2D-array forms (layers: per pixel, already selected).
 void sampleQuadImpl(const TexUnit& u, const float s[4], const float t[4], const uint32_t layers[4], float bias,
                     float out[4][4]) {
@@ -565,37 +600,27 @@ void sampleQuadImpl(const TexUnit& u, const float s[4], const float t[4], const 
     if (LodQuadLog* log = t_lodLog) probeLookup(*log, u, 0.0, 0.0, 0.0, 0.0, 0, 0, false);
     return;
   }
-  // GL 4.6 §8.14.1: u = s * w_base, v = t * h_base (the array layer is not part of rho).
-  // Coarse per-quad derivatives (docs/spec-choices.md T1, llvmpipe's quad_lod): ddx = c[1] - c[0],
-  // ddy = c[2] - c[0], in double.
-  const double W = double(u.tex->desc.width), H = double(u.tex->desc.height);
-  const double dudx = (double(s[1]) - double(s[0])) * W;
-  const double dvdx = (double(t[1]) - double(t[0])) * H;
-  const double dudy = (double(s[2]) - double(s[0])) * W;
-  const double dvdy = (double(t[2]) - double(t[0])) * H;
+  const QuadDerivatives d(u, s, t);
   PlanCache& cache = t_planCache;
-  if (cache.open && std::isfinite(dudx) && std::isfinite(dvdx) && std::isfinite(dudy) && std::isfinite(dvdy)) {
-    // rho^2 exactly as computeLambda forms it (same operands, same order).
-    const double rx = dudx * dudx + dvdx * dvdx;
-    const double ry = dudy * dudy + dvdy * dvdy;
-    const uint64_t rho2Bits = std::bit_cast<uint64_t>(rx > ry ? rx : ry);
-    const uint32_t biasBits = std::bit_cast<uint32_t>(bias);
-    const bool valid = cache.validEpoch == cache.epoch && cache.unit == &u;
-    if (!valid || cache.rho2Bits != rho2Bits || cache.biasBits != biasBits) {
-      const int32_t lambda8 = computeLambda(dudx, dvdx, dudy, dvdy, u.sampler, bias);
-      if (!valid || cache.lambda8 != lambda8) cache.plan = makePlan(u, lambda8);
-      cache.unit = &u, cache.rho2Bits = rho2Bits, cache.biasBits = biasBits, cache.lambda8 = lambda8;
-      cache.validEpoch = cache.epoch;
-    }
+  if (cache.open && updatePlanCache(u, d, bias)) {
     if (LodQuadLog* log = t_lodLog)
-      probeLookup(*log, u, dudx, dvdx, dudy, dvdy, cache.lambda8, cache.plan.levelCount, false);
+      probeLookup(*log, u, d.dudx, d.dvdx, d.dudy, d.dvdy, cache.lambda8, cache.plan.levelCount, false);
     sampleN(u, cache.plan, 4, s, t, layers, out);
     return;
   }
-  const int32_t lambda8 = computeLambda(dudx, dvdx, dudy, dvdy, u.sampler, bias);
+  const int32_t lambda8 = computeLambda(d.dudx, d.dvdx, d.dudy, d.dvdy, u.sampler, bias);
   const Plan p = makePlan(u, lambda8);
-  if (LodQuadLog* log = t_lodLog) probeLookup(*log, u, dudx, dvdx, dudy, dvdy, lambda8, p.levelCount, false);
+  if (LodQuadLog* log = t_lodLog) probeLookup(*log, u, d.dudx, d.dvdx, d.dudy, d.dvdy, lambda8, p.levelCount, false);
   sampleN(u, p, 4, s, t, layers, out);
+}
+
+// The quads [first, first + n) of sampleQuads2D in one kernel call with the cached plan `p` of their
+// common lambda, in layer 0; false, with nothing the caller needs written, where sampleN's kernel
+// conditions or the kernel's own do not hold.
+bool kernelRun(const Plan& p, size_t n, const float (*s)[4], const float (*t)[4], float (*out)[4][4]) {
+  if (!p.complete || !p.linear || p.wrapS == Wrap::ClampToBorder || p.wrapT == Wrap::ClampToBorder) return false;
+  const sample_simd::Rgba8LinearFn kernel = t_rgba8KernelSet ? t_rgba8Kernel : sample_simd::rgba8LinearKernel();
+  return kernel && kernel(p, 0, s[0], t[0], 4 * n, out[0]);
 }
 
 inline bool intervalMode(const TexUnit& u) {
@@ -648,6 +673,40 @@ void sampleQuad2D(const TexUnit& u, const float s[4], const float t[4], float bi
   if (intervalMode(u)) return sampleQuadInterval(u, s, t, nullptr, bias, nullptr, out);
   static constexpr uint32_t kLayer0[4] = {0, 0, 0, 0};
   sampleQuadImpl(u, s, t, kLayer0, bias, out);
+}
+
+void sampleQuads2D(const TexUnit& u, size_t n, const float (*s)[4], const float (*t)[4], float bias,
+                   float (*out)[4][4]) {
+  const SampleTimer timer;
+  static constexpr uint32_t kLayer0[4] = {0, 0, 0, 0};
+  PlanCache& cache = t_planCache;
+  const bool batched = cache.open && !t_lodLog && !intervalMode(u) && isComplete(u.tex, u.sampler.state) &&
+                       u.tex->desc.format == Format::RGBA8;
+  if (!batched) {  // the quad-by-quad lookups, as sampleQuad2D
+    for (size_t q = 0; q < n; ++q) {
+      if (intervalMode(u)) sampleQuadInterval(u, s[q], t[q], nullptr, bias, nullptr, out[q]);
+      else sampleQuadImpl(u, s[q], t[q], kLayer0, bias, out[q]);
+    }
+    return;
+  }
+  // Each quad's lambda and plan come from the cache exactly as in sampleQuadImpl; a run of quads with
+  // one lambda is sampled in one kernel call with a copy of its plan (the next lambda replaces the
+  // cached one). What the kernel declines goes quad by quad through sampleN, as in sampleQuadImpl.
+  size_t q = 0;
+  while (q < n) {
+    if (!updatePlanCache(u, QuadDerivatives(u, s[q], t[q]), bias)) {
+      sampleQuadImpl(u, s[q], t[q], kLayer0, bias, out[q]);  // a non-finite derivative: no cache
+      ++q;
+      continue;
+    }
+    const Plan plan = cache.plan;
+    const int32_t lambda8 = cache.lambda8;
+    size_t end = q + 1;
+    while (end < n && updatePlanCache(u, QuadDerivatives(u, s[end], t[end]), bias) && cache.lambda8 == lambda8) ++end;
+    if (!kernelRun(plan, end - q, s + q, t + q, out + q))
+      for (size_t i = q; i < end; ++i) sampleN(u, plan, 4, s[i], t[i], kLayer0, out[i]);
+    q = end;
+  }
 }
 
 void sampleQuad2DArray(const TexUnit& u, const float s[4], const float t[4], const float r[4], float bias,

@@ -1,4 +1,4 @@
-// The sampler's SIMD path: the exact RGBA8 LINEAR lookup for the four pixels of a quad, compiled by
+// The sampler's SIMD path: the exact RGBA8 LINEAR lookup for the pixels of one or more quads, compiled by
 // Google Highway for every x86 target it can attain (SSSE3, SSE4, AVX2, AVX-512 and its one-lane
 // scalar target) and chosen at run time for the CPU.
 //
@@ -25,22 +25,24 @@
 // Fused multiply-add, approximate reciprocals and float reductions are not used (tools/lint_fp.sh).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include "raster/sample_detail.h"
 
 namespace tessera::sample_simd {
 
-// The quad kernel: out[i] = RGBA of lookup i at (s[i], t[i]) in `layer` (already clamped to
-// p.lastLayer), or false when the plan or a coordinate is outside what the kernel takes (see above).
-// Precondition: p is complete and its texture is RGBA8.
+// The kernel: out[i] = RGBA of lookup i at (s[i], t[i]) in `layer` (already clamped to p.lastLayer) for
+// i < n, n a multiple of 4 (whole quads; several quads sharing one plan fill the target's wider
+// vectors), or false when n is not, or the plan or a coordinate is outside what the kernel takes (see
+// above); out is then partly written. Precondition: p is complete and its texture is RGBA8.
 using Rgba8LinearFn = bool (*)(const sample_detail::Plan& p, uint32_t layer, const float* s, const float* t,
-                               float (*out)[4]);
+                               size_t n, float (*out)[4]);
 
 // The kernel of the target running now (raster/simd_targets.h), nullptr under "reference". Resolve it
 // once per triangle, not per quad: the dispatch is a call into libhwy.
 Rgba8LinearFn rgba8LinearKernel();
 
-// rgba8LinearKernel() and a call of it; false under "reference".
+// rgba8LinearKernel() and a call of it on one quad (n = 4); false under "reference".
 bool sampleQuadRgba8Linear(const sample_detail::Plan& p, uint32_t layer, const float* s, const float* t,
                            float (*out)[4]);
 

@@ -8,6 +8,8 @@
 // (multiply, test, force) is texarray_batch's materials layout, so a material gives one colour in the
 // baseline and the batched frame (docs/spec-choices.md F9, F10). With REPEAT addressing M
 // realises the 2^k atlas scaling of the texture atlas tree (Buchholz 2005 §4.5.4).
+#include <algorithm>
+
 #include "raster/programs/common.h"
 
 namespace tessera::programs {
@@ -30,14 +32,21 @@ class Textured final : public Program {
     const float* tint = ctx.uniforms[7].data();
     const float bias = ctx.uniforms[8][0], cutoff = ctx.uniforms[8][1];
     const bool opaque = ctx.uniforms[8][2] != 0.0f;
+    // The lookups of up to kChunk quads in one call: quads that share a lambda fill the sampler's wide
+    // vectors (the rasterizer's batches are 64 quads).
+    constexpr size_t kChunk = 64;
+    float s[kChunk][4], t[kChunk][4], texel[kChunk][4][4];
     for (size_t q = 0; q < b.count; ++q) {
-      const Quad& quad = b.quads[q];
-      float s[4], t[4], texel[4][4];
-      for (int p = 0; p < 4; ++p) s[p] = quad.var[p][0], t[p] = quad.var[p][1];
-      sampleQuad2D(ctx.units[0], s, t, bias, texel);
+      const size_t k = q % kChunk;
+      if (k == 0) {
+        const size_t n = std::min(kChunk, b.count - q);
+        for (size_t i = 0; i < n; ++i)
+          for (int p = 0; p < 4; ++p) s[i][p] = b.quads[q + i].var[p][0], t[i][p] = b.quads[q + i].var[p][1];
+        sampleQuads2D(ctx.units[0], n, s, t, bias, texel);
+      }
       for (int p = 0; p < 4; ++p) {
         float c[4];
-        for (int k = 0; k < 4; ++k) c[k] = texel[p][k] * tint[k];
+        for (int ch = 0; ch < 4; ++ch) c[ch] = texel[k][p][ch] * tint[ch];
         if (cutoff > 0.0f && c[3] < cutoff) b.out[q].discard |= uint8_t(1u << p);
         if (opaque) c[3] = 1.0f;
         storeColor(b.out[q], 0, p, c);
