@@ -422,6 +422,26 @@ TEST(Validate, BufferContentsAreThoseUploadedBeforeEachDraw) {
   ASSERT_EQ(diags.size(), 1u) << dump(diags);  // only the earlier draw
 }
 
+TEST(Validate, AVertexFoundValidUnderOneLayoutIsCheckedAgainUnderAnother) {
+  // validate() remembers the vertices it found valid (a vertex many indices share is read once); that
+  // must not carry over to a layout that reads other bytes as the position.
+  auto vertices = quad();
+  const uint32_t nanBits = 0x7fc00000u;
+  for (Vertex& v : vertices) v.id = nanBits;
+  Frame f(vertices);
+  VertexLayout positionOnly;
+  positionOnly.stride = sizeof(Vertex);
+  positionOnly.attribs[0] = {0, 4, AttribType::F32, 0};
+  f.l.setVertexLayout(positionOnly);
+  f.l.drawIndexed(0, 6);
+  EXPECT_TRUE(validate(f.l).empty()) << dump(validate(f.l));
+  VertexLayout shifted = positionOnly;
+  shifted.attribs[0].offset = 4;  // (pos.y, pos.z, pos.w, id): id's bits are a NaN
+  f.l.setVertexLayout(shifted);
+  f.l.drawIndexed(0, 6);
+  expectOnlyOnLast(f.l, "vertex 0: position (location 0) component 3 is nan");
+}
+
 TEST(Validate, AHugeSparselyUploadedBufferIsCheckedExactlyAndCheaply) {
   // 1 GiB declared, 48 bytes uploaded: never-uploaded bytes read as zero, and validate() must not
   // allocate the declared size. Vertex 0's position starts 2 bytes before a 64 KiB boundary, so the
