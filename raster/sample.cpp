@@ -449,7 +449,8 @@ void sampleN(const TexUnit& u, const Plan& p, int n, const float* s, const float
       if (n == 4 && p.linear && !border && layers[0] == layers[1] && layers[0] == layers[2] &&
           layers[0] == layers[3]) {
         const sample_simd::Rgba8LinearFn kernel = t_rgba8KernelSet ? t_rgba8Kernel : sample_simd::rgba8LinearKernel();
-        if (kernel && kernel(p, layers[0] > p.lastLayer ? p.lastLayer : layers[0], s, t, 4, out)) return;
+        if (kernel && kernel(p, layers[0] > p.lastLayer ? p.lastLayer : layers[0], s, t, 4, nullptr, nullptr, out))
+          return;
       }
       return sampleEach<Format::RGBA8>(border, p, n, s, t, layers, out);
     case Format::R8: return sampleEach<Format::R8>(border, p, n, s, t, layers, out);
@@ -614,13 +615,26 @@ void sampleQuadImpl(const TexUnit& u, const float s[4], const float t[4], const 
   sampleN(u, p, 4, s, t, layers, out);
 }
 
-// The quads [first, first + n) of sampleQuads2D in one kernel call with the cached plan `p` of their
-// common lambda, in layer 0; false, with nothing the caller needs written, where sampleN's kernel
-// conditions or the kernel's own do not hold.
-bool kernelRun(const Plan& p, size_t n, const float (*s)[4], const float (*t)[4], float (*out)[4][4]) {
+// Plans that differ at most in their level weights (sampleQuads2D's runs).
+bool sameButWeights(const Plan& a, const Plan& b) {
+  if (a.complete != b.complete || a.linear != b.linear || a.wrapS != b.wrapS || a.wrapT != b.wrapT ||
+      a.lastLayer != b.lastLayer || a.levelCount != b.levelCount || std::memcmp(a.border, b.border, sizeof a.border))
+    return false;
+  for (int l = 0; l < a.levelCount; ++l) {
+    const LevelRef &x = a.lv[l], &y = b.lv[l];
+    if (x.data != y.data || x.layerStride != y.layerStride || x.w != y.w || x.h != y.h) return false;
+  }
+  return true;
+}
+
+// n quads of sampleQuads2D in one kernel call with plan `p` but each quad's own level weights
+// (weightL: per lookup), in layer 0; false, with nothing the caller needs written, where sampleN's
+// kernel conditions or the kernel's own do not hold.
+bool kernelRun(const Plan& p, size_t n, const float (*s)[4], const float (*t)[4], const uint32_t* weight0,
+               const uint32_t* weight1, float (*out)[4][4]) {
   if (!p.complete || !p.linear || p.wrapS == Wrap::ClampToBorder || p.wrapT == Wrap::ClampToBorder) return false;
   const sample_simd::Rgba8LinearFn kernel = t_rgba8KernelSet ? t_rgba8Kernel : sample_simd::rgba8LinearKernel();
-  return kernel && kernel(p, 0, s[0], t[0], 4 * n, out[0]);
+  return kernel && kernel(p, 0, s[0], t[0], 4 * n, weight0, weight1, out[0]);
 }
 
 inline bool intervalMode(const TexUnit& u) {
@@ -689,9 +703,12 @@ void sampleQuads2D(const TexUnit& u, size_t n, const float (*s)[4], const float 
     }
     return;
   }
-  // Each quad's lambda and plan come from the cache exactly as in sampleQuadImpl; a run of quads with
-  // one lambda is sampled in one kernel call with a copy of its plan (the next lambda replaces the
-  // cached one). What the kernel declines goes quad by quad through sampleN, as in sampleQuadImpl.
+  // Each quad's lambda and plan come from the cache exactly as in sampleQuadImpl. A run of quads whose
+  // plans differ at most in the level weights (under perspective lambda changes from quad to quad, the
+  // levels far less often) is sampled in one kernel call with each quad's own weights. What the kernel
+  // declines goes quad by quad through sampleN with the quad's own plan, as in sampleQuadImpl.
+  constexpr size_t kRun = 64;  // quads per call at most
+  uint32_t weight[2][4 * kRun];
   size_t q = 0;
   while (q < n) {
     if (!updatePlanCache(u, QuadDerivatives(u, s[q], t[q]), bias)) {
@@ -699,13 +716,30 @@ void sampleQuads2D(const TexUnit& u, size_t n, const float (*s)[4], const float 
       ++q;
       continue;
     }
-    const Plan plan = cache.plan;
-    const int32_t lambda8 = cache.lambda8;
-    size_t end = q + 1;
-    while (end < n && updatePlanCache(u, QuadDerivatives(u, s[end], t[end]), bias) && cache.lambda8 == lambda8) ++end;
-    if (!kernelRun(plan, end - q, s + q, t + q, out + q))
-      for (size_t i = q; i < end; ++i) sampleN(u, plan, 4, s[i], t[i], kLayer0, out[i]);
-    q = end;
+    Plan plan = cache.plan;  // the run's plan; quad i's own is this one with its weights
+    size_t m = 0;            // quads in the run
+    bool oneWeight = true;   // every quad so far has the plan's weights (`weight` is not filled yet)
+    int32_t lambda8 = cache.lambda8;
+    do {
+      if (oneWeight && cache.plan.levelWeight[0] != plan.levelWeight[0]) {
+        oneWeight = false;
+        for (size_t i = 0; i < 4 * m; ++i) weight[0][i] = plan.levelWeight[0], weight[1][i] = plan.levelWeight[1];
+      }
+      if (!oneWeight)
+        for (int l = 0; l < 2; ++l)
+          for (int p = 0; p < 4; ++p) weight[l][4 * m + size_t(p)] = cache.plan.levelWeight[l];
+      ++m;
+      if (q + m == n || m == kRun || !updatePlanCache(u, QuadDerivatives(u, s[q + m], t[q + m]), bias)) break;
+      // A plan is a function of the unit and lambda: only a new lambda can end the run.
+      if (cache.lambda8 != lambda8 && !sameButWeights(cache.plan, plan)) break;
+      lambda8 = cache.lambda8;
+    } while (true);
+    if (!kernelRun(plan, m, s + q, t + q, oneWeight ? nullptr : weight[0], oneWeight ? nullptr : weight[1], out + q))
+      for (size_t i = 0; i < m; ++i) {
+        if (!oneWeight) plan.levelWeight[0] = weight[0][4 * i], plan.levelWeight[1] = weight[1][4 * i];
+        sampleN(u, plan, 4, s[q + i], t[q + i], kLayer0, out[q + i]);
+      }
+    q += m;
   }
 }
 

@@ -64,8 +64,9 @@ void sampleQuad2D(const TexUnit& u, const float s[4], const float t[4], float bi
 void sampleQuad2DArray(const TexUnit& u, const float s[4], const float t[4], const float r[4], float bias,
                        float out[4][4]);
 // n quads of one triangle (a program's batch): out[q] = sampleQuad2D(u, s[q], t[q], bias, out[q]), the
-// same bytes; consecutive quads that share a lambda go to the SIMD kernel in one call, which fills
-// vectors wider than one quad.
+// same bytes; consecutive quads whose plans differ at most in the level weights (the same levels, any
+// lambda between them) go to the SIMD kernel in one call, with per-quad weights, filling vectors
+// wider than one quad.
 void sampleQuads2D(const TexUnit& u, size_t n, const float (*s)[4], const float (*t)[4], float bias,
                    float (*out)[4][4]);
 // textureGrad on a 2D array with explicit (quad-uniform) derivatives in normalized coordinates.

@@ -95,8 +95,8 @@ HWY_INLINE VU vertical(VU top, VU bottom, VU nb, VU b, VU levelW) {
 // One level's filtered RGBA times levelW, added to acc (R, G, B, A). False, with acc unspecified,
 // when a coordinate is outside |s w|, |t h| <= 2^14 (NaN included).
 template <class DF, class VF = hn::Vec<DF>, class VU = hn::Vec<hn::RebindToUnsigned<DF>>>
-HWY_INLINE bool accumulateLevel(DF df, const Plan& p, const LevelRef& L, uint32_t layer, uint32_t levelW, VF s,
-                                VF t, VU acc[4]) {
+HWY_INLINE bool accumulateLevel(DF df, const Plan& p, const LevelRef& L, uint32_t layer, VU w, VF s, VF t,
+                                VU acc[4]) {
   const hn::RebindToSigned<DF> di;
   const hn::RebindToUnsigned<DF> du;
   using VI = hn::Vec<decltype(di)>;
@@ -123,7 +123,6 @@ HWY_INLINE bool accumulateLevel(DF df, const Plan& p, const LevelRef& L, uint32_
   const VU h0e = horizontal(even(du, t00), even(du, t10), na, a), h0o = horizontal(odd(du, t00), odd(du, t10), na, a);
   const VU h1e = horizontal(even(du, t01), even(du, t11), na, a), h1o = horizontal(odd(du, t01), odd(du, t11), na, a);
   const VU low = hn::Set(du, 0xffffu);
-  const VU w = hn::Set(du, levelW);
   acc[0] = hn::Add(acc[0], vertical(hn::And(h0e, low), hn::And(h1e, low), nb, b, w));
   acc[1] = hn::Add(acc[1], vertical(hn::And(h0o, low), hn::And(h1o, low), nb, b, w));
   acc[2] = hn::Add(acc[2], vertical(hn::ShiftRight<16>(h0e), hn::ShiftRight<16>(h1e), nb, b, w));
@@ -133,14 +132,16 @@ HWY_INLINE bool accumulateLevel(DF df, const Plan& p, const LevelRef& L, uint32_
 
 // Lookups [off, off + Lanes(df)) of the call; false as QuadRgba8Linear.
 template <class DF>
-HWY_INLINE bool lookups(DF df, const Plan& p, uint32_t layer, const float* s, const float* t, size_t off,
-                        float (*out)[4]) {
+HWY_INLINE bool lookups(DF df, const Plan& p, uint32_t layer, const float* s, const float* t,
+                        const uint32_t* const weights[2], size_t off, float (*out)[4]) {
   const hn::RebindToUnsigned<DF> du;
   using VU = hn::Vec<decltype(du)>;
   const hn::Vec<DF> vs = hn::LoadU(df, s + off), vt = hn::LoadU(df, t + off);
   VU acc[4] = {hn::Zero(du), hn::Zero(du), hn::Zero(du), hn::Zero(du)};
-  for (int l = 0; l < p.levelCount; ++l)
-    if (!accumulateLevel(df, p, p.lv[l], layer, p.levelWeight[l], vs, vt, acc)) return false;
+  for (int l = 0; l < p.levelCount; ++l) {
+    const VU w = weights[l] ? hn::LoadU(du, weights[l] + off) : hn::Set(du, p.levelWeight[l]);
+    if (!accumulateLevel(df, p, p.lv[l], layer, w, vs, vt, acc)) return false;
+  }
   constexpr size_t kMax = hn::MaxLanes(DF());
   HWY_ALIGN uint32_t sum[4][kMax];
   for (int c = 0; c < 4; ++c) hn::Store(acc[c], du, sum[c]);
@@ -150,7 +151,9 @@ HWY_INLINE bool lookups(DF df, const Plan& p, uint32_t layer, const float* s, co
   return true;
 }
 
-bool QuadRgba8Linear(const Plan& p, uint32_t layer, const float* s, const float* t, size_t n, float (*out)[4]) {
+bool QuadRgba8Linear(const Plan& p, uint32_t layer, const float* s, const float* t, size_t n, const uint32_t* weight0,
+                     const uint32_t* weight1, float (*out)[4]) {
+  const uint32_t* const weights[2] = {weight0, weight1};
   if (!p.linear || n % 4 != 0) return false;
   for (int l = 0; l < p.levelCount; ++l) {
     const LevelRef& L = p.lv[l];
@@ -161,9 +164,9 @@ bool QuadRgba8Linear(const Plan& p, uint32_t layer, const float* s, const float*
   const DQuad dq;
   size_t off = 0;
   for (; off + hn::Lanes(dw) <= n; off += hn::Lanes(dw))
-    if (!lookups(dw, p, layer, s, t, off, out)) return false;
+    if (!lookups(dw, p, layer, s, t, weights, off, out)) return false;
   for (; off < n; off += hn::Lanes(dq))
-    if (!lookups(dq, p, layer, s, t, off, out)) return false;
+    if (!lookups(dq, p, layer, s, t, weights, off, out)) return false;
   return true;
 }
 
@@ -188,7 +191,7 @@ Rgba8LinearFn rgba8LinearKernel() {
 bool sampleQuadRgba8Linear(const sample_detail::Plan& p, uint32_t layer, const float* s, const float* t,
                            float (*out)[4]) {
   const Rgba8LinearFn f = rgba8LinearKernel();
-  return f != nullptr && f(p, layer, s, t, 4, out);
+  return f != nullptr && f(p, layer, s, t, 4, nullptr, nullptr, out);
 }
 
 }  // namespace tessera::sample_simd

@@ -32,11 +32,13 @@
 namespace tessera::sample_simd {
 
 // The kernel: out[i] = RGBA of lookup i at (s[i], t[i]) in `layer` (already clamped to p.lastLayer) for
-// i < n, n a multiple of 4 (whole quads; several quads sharing one plan fill the target's wider
-// vectors), or false when n is not, or the plan or a coordinate is outside what the kernel takes (see
-// above); out is then partly written. Precondition: p is complete and its texture is RGBA8.
+// i < n, n a multiple of 4 (whole quads; several quads sharing one plan but for the level weights fill
+// the target's wider vectors), or false when n is not, or the plan or a coordinate is outside what the
+// kernel takes (see above); out is then partly written. weightL[i], when not nullptr, replaces
+// p.levelWeight[L] for lookup i (the lookup's own plan's weight). Precondition: p is complete and its
+// texture is RGBA8.
 using Rgba8LinearFn = bool (*)(const sample_detail::Plan& p, uint32_t layer, const float* s, const float* t,
-                               size_t n, float (*out)[4]);
+                               size_t n, const uint32_t* weight0, const uint32_t* weight1, float (*out)[4]);
 
 // The kernel of the target running now (raster/simd_targets.h), nullptr under "reference". Resolve it
 // once per triangle, not per quad: the dispatch is a call into libhwy.
