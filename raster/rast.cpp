@@ -227,6 +227,11 @@ class TriangleRasterizer {
     be.rowBegin = std::max(y0 - by, 0), be.rowEnd = std::min(y1 - by + 1, kBlockSize);
     uint64_t mask = full ? ~uint64_t(0) : s_.blockCoverage(be);
     if (!inside) mask &= boxMask(bx, by, x0, y0, x1, y1);
+    if constexpr (walk_ == Walk::Visibility) {
+      // Without a depth test every covered pixel passes: the block's ownership and counters come from
+      // its mask alone, with no depth to interpolate.
+      if (!(ds_.depth.test && scene_.target.depth)) return visibleBlock(bx, by, mask);
+    }
     for (int ry = 0; mask && ry < kBlockSize; ry += 2)
       for (int rx = 0; rx < kBlockSize; rx += 2) {
         // Quad pixel p = x + 2 y is bit 8 (ry + y) + rx + x of the mask.
@@ -273,6 +278,28 @@ class TriangleRasterizer {
     stats_.fragments_shaded += n;
     stats_.helper_invocations += 4 - n;
     stats_.pixels_written += n;
+  }
+
+  // Walk::Visibility without a depth test: the covered pixels of the block at (bx, by) (mask, bit
+  // 8 y + x) all pass; recordVisible's ownership and counters for each of its quads.
+  void visibleBlock(int32_t bx, int32_t by, uint64_t mask) {
+    if (!mask) return;
+    uint16_t* row = s_.owner + size_t(by - tileY0_) * kTileSize + size_t(bx - tileX0_);
+    for (int y = 0; y < kBlockSize; ++y, row += kTileSize) {
+      const uint32_t bits = uint32_t(mask >> (8 * y)) & 0xffu;
+      for (int x = 0; x < kBlockSize; ++x)
+        if (bits >> x & 1) row[x] = id_;
+    }
+    for (int ry = 0; ry < kBlockSize; ry += 2)
+      for (int rx = 0; rx < kBlockSize; rx += 2) {
+        const uint64_t bits = mask >> (8 * ry + rx);
+        const uint64_t n = quadPixels(uint32_t((bits & 3) | (bits >> 8 & 3) << 2));
+        if (!n) continue;
+        stats_.quads_shaded += 1;
+        stats_.fragments_shaded += n;
+        stats_.helper_invocations += 4 - n;
+        stats_.pixels_written += n;
+      }
   }
 
   // The early depth test of a quad's four pixels as a mask (bit p: pixel p passes), without a branch
