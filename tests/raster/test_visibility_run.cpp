@@ -94,7 +94,9 @@ void expectImmediateBytes(const Layers& o, const std::string& what) {
   const CommandList cl = layeredFrame(o);
   simd::forceTarget("reference");
   const Rendered immediate = renderList(cl, 1);
-  if (o.discard >= 0) EXPECT_GT(immediate.stats.fragments_discarded, 0u) << what << ": the frame must discard";
+  if (o.discard >= 0) {
+    EXPECT_GT(immediate.stats.fragments_discarded, 0u) << what << ": the frame must discard";
+  }
   simd::forceTarget("best");
   ASSERT_NE(simd::activeTarget(), "reference") << "this machine has no SIMD target: nothing to compare";
   for (int threads : {1, 2, 7}) {
