@@ -558,6 +558,8 @@ struct PlanCache {
 };
 constinit thread_local PlanCache t_planCache;
 
+constexpr uint32_t kLayer0[4] = {0, 0, 0, 0};  // the layers of a 2D lookup's quad
+
 // The quad's coarse derivatives (docs/spec-choices.md T1, llvmpipe's quad_lod): ddx = c[1] - c[0],
 // ddy = c[2] - c[0], in double, of u = s * w_base, v = t * h_base (GL 4.6 §8.14.1; the array layer is
 // not part of rho).
@@ -685,14 +687,12 @@ void sampleAtLambda(const TexUnit& u, float s, float t, uint32_t layer, int32_t 
 void sampleQuad2D(const TexUnit& u, const float s[4], const float t[4], float bias, float out[4][4]) {
   const SampleTimer timer;
   if (intervalMode(u)) return sampleQuadInterval(u, s, t, nullptr, bias, nullptr, out);
-  static constexpr uint32_t kLayer0[4] = {0, 0, 0, 0};
   sampleQuadImpl(u, s, t, kLayer0, bias, out);
 }
 
 void sampleQuads2D(const TexUnit& u, size_t n, const float (*s)[4], const float (*t)[4], float bias,
                    float (*out)[4][4]) {
   const SampleTimer timer;
-  static constexpr uint32_t kLayer0[4] = {0, 0, 0, 0};
   PlanCache& cache = t_planCache;
   const bool batched = cache.open && !t_lodLog && !intervalMode(u) && isComplete(u.tex, u.sampler.state) &&
                        u.tex->desc.format == Format::RGBA8;

@@ -107,6 +107,17 @@ void expectImmediateBytes(const Layers& o, const std::string& what) {
   }
 }
 
+// A size x size RGBA8 target, bound, with its viewport, cleared to opaque black (LazyFlush's frames).
+CommandList squareFrame(int size) {
+  CommandList cl;
+  RenderTarget t;
+  t.color[0] = createTarget(cl, Format::RGBA8, size, size);
+  cl.setRenderTarget(t);
+  cl.setViewport({0, 0, size, size});
+  cl.clearColor(0, {0, 0, 0, 1});
+  return cl;
+}
+
 }  // namespace
 
 TEST(VisibilityRun, HiddenLayersGiveTheImmediateWalksBytesAndCounters) {
@@ -131,12 +142,7 @@ TEST(LazyFlush, AnUploadToATextureThatAnUnexecutedDrawSamplesLetsThatDrawSeeTheO
   // Left half: a draw samples texture T (one level, one colour); then T is uploaded with another colour
   // and the right half samples it. Each half must show the colour T had when its draw was issued.
   constexpr int kS = 64;
-  CommandList cl;
-  RenderTarget t;
-  t.color[0] = createTarget(cl, Format::RGBA8, kS, kS);
-  cl.setRenderTarget(t);
-  cl.setViewport({0, 0, kS, kS});
-  cl.clearColor(0, {0, 0, 0, 1});
+  CommandList cl = squareFrame(kS);
   Mesh m;
   m.quad({-1, -1, 0}, {0, -1, 0}, {0, 1, 0}, {-1, 1, 0}, {0, 0, 0, 0}, {1, 0, 0, 0}, {1, 1, 0, 0}, {0, 1, 0, 0});
   m.quad({0, -1, 0}, {1, -1, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 0, 0}, {1, 0, 0, 0}, {1, 1, 0, 0}, {0, 1, 0, 0});
@@ -169,12 +175,7 @@ TEST(LazyFlush, TilesRasterizedCountsTheBinsOfEachUploadSegmentAsBefore) {
   // every tile (segment 2: 4 more), then an upload and a draw over the bottom-left tile only (1 more).
   // Before uploads flushed only when needed, each upload ended the scene, which gave these nine.
   constexpr int kS = 128;
-  CommandList cl;
-  RenderTarget t;
-  t.color[0] = createTarget(cl, Format::RGBA8, kS, kS);
-  cl.setRenderTarget(t);
-  cl.setViewport({0, 0, kS, kS});
-  cl.clearColor(0, {0, 0, 0, 1});
+  CommandList cl = squareFrame(kS);
   Mesh m;
   m.quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, {}, {}, {}, {});
   m.quad({-0.9f, -0.9f, 0}, {-0.1f, -0.9f, 0}, {-0.1f, -0.1f, 0}, {-0.9f, -0.1f, 0}, {}, {}, {}, {});
