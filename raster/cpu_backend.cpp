@@ -747,6 +747,11 @@ void CpuBackend::execute(const CommandList& list, std::string_view frameName) {
   const double runMs = std::chrono::duration<double, std::milli>(end - validated).count();
   st.frameMs = std::max(0.0, runMs - st.resourcesMs);
   st.perStage = impl_->options.stageTimes;
+  st.hizBlocksSkipped = st.hizFragmentsSkipped = 0;
+  for (const RastScratch& s : impl_->scratch) {
+    st.hizBlocksSkipped += s.hizBlocksSkipped;
+    st.hizFragmentsSkipped += s.hizFragmentsSkipped;
+  }
   if (st.perStage) {
     // Ticks to milliseconds with the run's own wall time as the reference clock.
     const double msPerTick = ticks > 0 ? runMs / double(ticks) : 0.0;

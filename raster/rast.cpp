@@ -128,7 +128,9 @@ class TriangleRasterizer {
         lateDepth_(ds_.program->writesDepth()), sourceOver_(isSourceOver(ds_.blend)), unorm8Quad_(s.unorm8Quad),
         unblendedRgba8_(!ds_.blend.enabled && allRgba8(scene, ds_)),
         // The LOD probe shades quad by quad, and a late depth test needs no early one: both stay per quad.
-        gathered_(s.quadDepths && s.quadVaryings && !lateDepth_ && !scene.lod), id_(id) {
+        gathered_(s.quadDepths && s.quadVaryings && !lateDepth_ && !scene.lod), id_(id),
+        writesDepth_(walk_ != Walk::Owned && ds_.depth.test && scene.target.depth && ds_.depth.write),
+        hizFloor_(occlusionFloor()) {
     beginPlanCache();  // a new triangle: no lambda or plan of another one is reused (sample.h)
     if (gathered_) {
       // The scalar code's conversions of the triangle's constants (rast.h), each exact.
@@ -227,6 +229,17 @@ class TriangleRasterizer {
     be.rowBegin = std::max(y0 - by, 0), be.rowEnd = std::min(y1 - by + 1, kBlockSize);
     uint64_t mask = full ? ~uint64_t(0) : s_.blockCoverage(be);
     if (!inside) mask &= boxMask(bx, by, x0, y0, x1, y1);
+    if (!mask) return;
+    const size_t b = size_t((by - tileY0_) / kBlockSize) * RastScratch::kBlocksPerRow + size_t((bx - tileX0_) / kBlockSize);
+    if (hizFloor_ == hizFloor_ && occluded(b, bx, by)) {
+      // Every covered pixel fails the early depth test, as the walk would have counted them.
+      const uint64_t n = uint64_t(std::popcount(mask));
+      stats_.fragments_depth_failed += n;
+      s_.hizBlocksSkipped += 1;
+      s_.hizFragmentsSkipped += n;
+      return;
+    }
+    if (writesDepth_) s_.hizKnown &= ~(uint64_t(1) << b);  // its largest stored depth may change
     if constexpr (walk_ == Walk::Visibility) {
       // Without a depth test every covered pixel passes: the block's ownership and counters come from
       // its mask alone, with no depth to interpolate.
@@ -252,6 +265,63 @@ class TriangleRasterizer {
     if (gathered_) runGathered();
   }
 
+  // Hierarchical Z: the least depth a covered pixel of the triangle can have, if a block's fragments may
+  // be found failing from it (occluded); NaN otherwise. Exact, not conservative by a tolerance: a
+  // covered pixel has edge values e_i >= 0 (E_i - bias_i >= 0, bias_i in {0, 1}) that sum to area2,
+  // so its exact depth sum(e_i z_i) / area2 is a convex combination of the vertex depths, >= min z_i.
+  // With every z_i finite and >= 0, pixelDepth (rast.h; the kernels give its bits) adds non-negative
+  // terms, so its double is the exact value times at most (1 - 2^-53)^6 / (1 + 2^-53): far closer to
+  // min z_i than half a float ulp, and the rounding to float cannot go below min z_i. Only for the
+  // walks that run the early test on the interpolated depth (not a program's gl_FragDepth), with the
+  // kernels (the "reference" target walks every block: the tests compare the two), one owner of the
+  // target's depth per tile (not a layered target) and not in provenance mode.
+  float occlusionFloor() const {
+    constexpr float kNone = std::numeric_limits<float>::quiet_NaN();
+    if (walk_ == Walk::Owned || lateDepth_ || !s_.quadDepths || scene_.provenance || scene_.target.layer == kLayered ||
+        !ds_.depth.test || !scene_.target.depth)
+      return kNone;
+    if (ds_.depth.func != CompareFunc::Less && ds_.depth.func != CompareFunc::LEqual) return kNone;
+    for (int i = 0; i < 3; ++i)
+      if (!(t_.z[i] >= 0.0f && t_.z[i] <= std::numeric_limits<float>::max())) return kNone;
+    return std::min(std::min(t_.z[0], t_.z[1]), t_.z[2]);
+  }
+
+  // Whether every covered pixel of block b (at bx, by) fails the depth test: each has a depth >=
+  // hizFloor_, and LESS fails for a stored depth <= it, LEQUAL for one < it. A stored NaN fails both
+  // whatever the incoming depth, so the block's bound is its largest non-NaN depth.
+  bool occluded(size_t b, int32_t bx, int32_t by) {
+    if (!(s_.hizKnown >> b & 1)) {
+      s_.hizMax[b] = storedDepthMax(bx, by);
+      s_.hizKnown |= uint64_t(1) << b;
+    }
+    const float zmax = s_.hizMax[b];
+    return ds_.depth.func == CompareFunc::Less ? hizFloor_ >= zmax : hizFloor_ > zmax;
+  }
+
+  // The largest non-NaN depth stored in the block at (bx, by) within the target; -inf if none. Per
+  // column first (independent lanes a compiler may vectorize), then across the columns.
+  float storedDepthMax(int32_t bx, int32_t by) const {
+    const int32_t w = std::min(kBlockSize, xLast_ - bx + 1), h = std::min(kBlockSize, yLast_ - by + 1);
+    float col[kBlockSize];
+    for (float& c : col) c = -std::numeric_limits<float>::infinity();
+    for (int32_t y = 0; y < h; ++y) {
+      float row[kBlockSize];
+      const uint8_t* src = depth_.at(bx, by + y);
+      if (w == kBlockSize) {  // a whole row: one fixed-size copy, the loop below in vector lanes
+        std::memcpy(row, src, sizeof row);
+        for (int32_t x = 0; x < kBlockSize; ++x) col[x] = row[x] > col[x] ? row[x] : col[x];  // a NaN keeps col
+      } else {
+        for (int32_t x = 0; x < w; ++x) {
+          std::memcpy(&row[x], src + sizeof(float) * size_t(x), sizeof(float));
+          col[x] = row[x] > col[x] ? row[x] : col[x];
+        }
+      }
+    }
+    float m = col[0];
+    for (int32_t x = 1; x < w; ++x) m = col[x] > m ? col[x] : m;
+    return m;
+  }
+
   // The pixels of the block at (bx, by) inside [x0, x1] x [y0, y1], as a coverage mask.
   static uint64_t boxMask(int32_t bx, int32_t by, int32_t x0, int32_t y0, int32_t x1, int32_t y1) {
     const int32_t cx0 = std::max(x0 - bx, 0), cx1 = std::min(x1 - bx, kBlockSize - 1);
@@ -263,21 +333,42 @@ class TriangleRasterizer {
     return m;
   }
 
-  // Walk::Visibility's whole work on a quad whose live pixels passed the early depth test: the
-  // depth writes, the ownership, and the counters flush() would have counted (no pixel is discarded).
-  void recordVisible(const Quad& q, uint8_t live) {
-    const bool depthWrite = ds_.depth.test && scene_.target.depth && ds_.depth.write;
-    for (int p = 0; p < 4; ++p) {
-      if (!(live >> p & 1)) continue;
-      const int32_t x = q.x + (p & 1), y = q.y + (p >> 1);
-      if (depthWrite) std::memcpy(depth_.at(x, y), &q.z[p], sizeof(float));
-      s_.owner[size_t(y - tileY0_) * kTileSize + size_t(x - tileX0_)] = id_;
+  // Walk::Visibility's whole work on the block's gathered quads (their depths in s_.z): the early
+  // depth test, the depth writes, the ownership, and the counters quad() and flush() would have
+  // counted (no pixel is discarded, so every live pixel is shaded and written).
+  void recordVisible(size_t np) {
+    const bool depthTest = ds_.depth.test && scene_.target.depth;
+    uint64_t quads = 0, live = 0, failed = 0;
+    for (size_t j = 0; j < np; ++j) {
+      const RastScratch::PendingQuad& pq = s_.pending[j];
+      const float* z = s_.z + 4 * j;
+      const uint8_t pass = depthTest ? uint8_t(pq.coverage & depthPassMask(pq.x, pq.y, z)) : pq.coverage;
+      failed += quadPixels(uint32_t(pq.coverage & ~pass));
+      if (!pass) continue;
+      quads += 1;
+      live += quadPixels(pass);
+      uint16_t* own = s_.owner + size_t(pq.y - tileY0_) * kTileSize + size_t(pq.x - tileX0_);
+      if (pass == 0xF) {  // the common case: both rows' two pixels at once
+        if (writesDepth_) {
+          std::memcpy(depth_.at(pq.x, pq.y), z, 2 * sizeof(float));
+          std::memcpy(depth_.at(pq.x, pq.y + 1), z + 2, 2 * sizeof(float));
+        }
+        const uint16_t ids[2] = {id_, id_};
+        std::memcpy(own, ids, sizeof ids);
+        std::memcpy(own + kTileSize, ids, sizeof ids);
+        continue;
+      }
+      for (int p = 0; p < 4; ++p) {
+        if (!(pass >> p & 1)) continue;
+        if (writesDepth_) std::memcpy(depth_.at(pq.x + (p & 1), pq.y + (p >> 1)), &z[p], sizeof(float));
+        own[size_t(p >> 1) * kTileSize + size_t(p & 1)] = id_;
+      }
     }
-    const uint64_t n = quadPixels(live);
-    stats_.quads_shaded += 1;
-    stats_.fragments_shaded += n;
-    stats_.helper_invocations += 4 - n;
-    stats_.pixels_written += n;
+    stats_.fragments_depth_failed += failed;
+    stats_.quads_shaded += quads;
+    stats_.fragments_shaded += live;
+    stats_.helper_invocations += 4 * quads - live;
+    stats_.pixels_written += live;
   }
 
   // Walk::Visibility without a depth test: the covered pixels of the block at (bx, by) (mask, bit
@@ -305,11 +396,12 @@ class TriangleRasterizer {
   // The early depth test of a quad's four pixels as a mask (bit p: pixel p passes), without a branch
   // per pixel. A quad may reach past the last column or row of the target (odd sizes); those pixels are
   // never covered, and their stored depth is read at the last valid one instead, then masked away.
-  uint8_t depthPassMask(const Quad& q) const {
-    const int32_t xr = std::min(q.x + 1, xLast_), yu = std::min(q.y + 1, yLast_);
-    const float stored[4] = {depth_.depth(q.x, q.y), depth_.depth(xr, q.y), depth_.depth(q.x, yu), depth_.depth(xr, yu)};
+  uint8_t depthPassMask(const Quad& q) const { return depthPassMask(q.x, q.y, q.z); }
+  uint8_t depthPassMask(int32_t x, int32_t y, const float* z) const {
+    const int32_t xr = std::min(x + 1, xLast_), yu = std::min(y + 1, yLast_);
+    const float stored[4] = {depth_.depth(x, y), depth_.depth(xr, y), depth_.depth(x, yu), depth_.depth(xr, yu)};
     uint32_t pass = 0;
-    for (int p = 0; p < 4; ++p) pass |= uint32_t(depthPasses(ds_.depth.func, q.z[p], stored[p])) << p;
+    for (int p = 0; p < 4; ++p) pass |= uint32_t(depthPasses(ds_.depth.func, z[p], stored[p])) << p;
     return uint8_t(pass);
   }
 
@@ -346,6 +438,7 @@ class TriangleRasterizer {
     // Owned: a program that does not read gl_FragCoord.z never sees Quad::z, and nothing else reads it
     // there (the depth test and writes were Visibility's).
     if (walk_ != Walk::Owned || ds_.program->readsFragDepth()) s_.quadDepths(px, 4 * np, plane_, s_.z);
+    if constexpr (walk_ == Walk::Visibility) return recordVisible(np);
     const bool depthTest = ds_.depth.test && scene_.target.depth;
     size_t kept = 0;
     for (size_t j = 0; j < np; ++j) {
@@ -359,10 +452,6 @@ class TriangleRasterizer {
         live &= depthPassMask(q);
         stats_.fragments_depth_failed += quadPixels(uint32_t(pq.coverage & ~live));
         if (!live) continue;
-      }
-      if constexpr (walk_ == Walk::Visibility) {
-        recordVisible(q, live);
-        continue;
       }
       s_.live[n] = live;
       s_.outs[n].discard = 0;
@@ -531,6 +620,9 @@ class TriangleRasterizer {
   // Visibility and Owned (last, so the immediate walk's members keep their place).
   const uint16_t id_;  // 1 + the triangle's index in its visibility run
   int32_t tileX0_ = 0, tileY0_ = 0;  // the tile's first column and row (RastScratch::owner's origin)
+  // Hierarchical Z (occluded).
+  const bool writesDepth_;  // the walk may write depth in the blocks it visits
+  const float hizFloor_;    // occlusionFloor(): NaN when blocks are always walked
 };
 
 // The mean bounding-box pixels per triangle from which a run is walked twice (rasterizeTile).
@@ -631,6 +723,7 @@ void rasterizeTile(const Scene& scene, size_t tileIndex, RastScratch& scratch, P
   scratch.quadVaryings = quadVaryingsKernel();
   scratch.blockCoverage = blockCoverageKernel();
   bindSampleKernels();
+  scratch.hizKnown = 0;  // the depth target may have changed since this thread's last tile
   const int32_t tx = int32_t(tileIndex % size_t(scene.tilesX)), ty = int32_t(tileIndex / size_t(scene.tilesX));
   const TileRect tile{tx * kTileSize, ty * kTileSize, std::min((tx + 1) * kTileSize, scene.target.width) - 1,
                       std::min((ty + 1) * kTileSize, scene.target.height) - 1};
@@ -685,6 +778,7 @@ void rasterizeTile(const Scene& scene, size_t tileIndex, RastScratch& scratch, P
       }
       case TileOp::ClearDepth:
         runClear(scene, scene.clears[cmd.index], scene.target.depth, tile);
+        scratch.hizKnown = 0;
         break;
     }
   }

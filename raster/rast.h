@@ -7,9 +7,11 @@
 // the same way; a block's quads at once through interpolate_simd.h, or per quad below under the
 // "reference" SIMD target), early depth test (equivalent to the late test for programs that write
 // no depth; a program that writes gl_FragDepth gets the late test on its value, spec-choices F11),
-// fragment shading in batches, then fragops.h per pixel. Consecutive triangles whose fragments'
-// fate does not depend on shading (no blending, no discard, no gl_FragDepth) run as a visibility run:
-// coverage and depth first, then only the fragments that stay visible are shaded.
+// fragment shading in batches, then fragops.h per pixel. Consecutive triangles whose fragments' fate
+// does not depend on shading (no blending, no discard, no gl_FragDepth) run as a visibility run:
+// coverage and depth first, then only the fragments that stay visible are shaded. A block whose covered
+// pixels must all fail a LESS or LEQUAL depth test, by the triangle's least vertex depth against the
+// block's largest stored depth (hierarchical Z), is not walked; its fragments count as failing.
 // A tile owns its pixels, so tiles run in parallel and the result is independent of thread count.
 // Does not implement: setup or binning (setup.h).
 #pragma once
@@ -63,6 +65,17 @@ struct RastScratch {
   };
   std::vector<OwnedQuad> ownedQuads, ownedTemp;
   std::vector<uint32_t> ownedStart, ownedFill;
+  // Hierarchical Z (rast.cpp, TriangleRasterizer::occluded): per 8x8 block of the tile (row-major),
+  // the largest non-NaN depth stored in it, known where hizKnown has the block's bit. A block's bit
+  // is cleared when a triangle that may write its depth visits it, and every bit at the tile's start
+  // and at a depth clear.
+  static constexpr int kBlocksPerRow = kTileSize / kBlockSize;
+  static_assert(kBlocksPerRow * kBlocksPerRow == 64, "a tile's blocks are one 64-bit mask");
+  float hizMax[kBlocksPerRow * kBlocksPerRow] = {};
+  uint64_t hizKnown = 0;
+  // Work the fast path skipped, for benchmarks and tests (StageTimes; not a GL counter): blocks and
+  // fragments found hidden by the hierarchical Z without being walked.
+  uint64_t hizBlocksSkipped = 0, hizFragmentsSkipped = 0;
 };
 
 void rasterizeTile(const Scene& scene, size_t tileIndex, RastScratch& scratch, PipelineStats& stats);

@@ -34,6 +34,10 @@ struct StageTimes {
   bool perStage = false;
   double vertexMs = 0.0, clipMs = 0.0, setupMs = 0.0, binMs = 0.0, rastMs = 0.0, shadeMs = 0.0, sampleMs = 0.0,
          fragopsMs = 0.0;
+  // Work the fast path found it could skip, always counted (not GL counters: the stats JSON counts what
+  // GL does): 8x8 blocks walked by no triangle because the hierarchical Z found all their covered
+  // fragments failing the depth test, and those fragments.
+  uint64_t hizBlocksSkipped = 0, hizFragmentsSkipped = 0;
 };
 
 namespace detail {

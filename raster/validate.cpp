@@ -79,6 +79,14 @@ class ShadowBuffer {
     pending_.clear();
   }
 
+  // Bytes [offset, offset + n), inside the buffer: in place when one upload holds the whole buffer,
+  // else copied to scratch (n <= its size).
+  const uint8_t* view(uint64_t offset, size_t n, uint8_t* scratch) const {
+    if (direct_) return directBytes_.data() + offset;
+    read(offset, n, scratch);
+    return scratch;
+  }
+
   // Copies bytes [offset, offset + n), inside the buffer, to dst.
   void read(uint64_t offset, size_t n, uint8_t* dst) const {
     if (direct_) {
@@ -137,6 +145,10 @@ struct Resource {
   // that many indices (and draws) share is read and checked once. An upload or another layout clears it.
   std::vector<uint64_t> checkedVertices;
   VertexLayout checkedLayout;
+  // Indices checked against checkedVertices since it was cleared, and whether every vertex of the
+  // buffer has been checked in one sequential sweep since (checkVertices).
+  uint64_t checkedIndices = 0;
+  bool swept = false;
   SamplerState sampler;  // samplers
 };
 
@@ -373,7 +385,7 @@ class Validator {
       return;
     }
     if (blob) b->contents.upload(c.offset, list_.bytes(c.data));
-    b->checkedVertices.clear();
+    b->checkedVertices.clear(), b->checkedIndices = 0, b->swept = false;
   }
 
   void check(const CreateSampler& c) {
@@ -737,9 +749,18 @@ class Validator {
     data.flush();
     // Speed only (the diagnostics are the same): the vertices found valid before. Kept for buffers of
     // up to 2^26 vertices (an 8 MiB bitmap).
-    if (!(vb.checkedLayout == layout_)) vb.checkedVertices.clear(), vb.checkedLayout = layout_;
+    if (!(vb.checkedLayout == layout_))
+      vb.checkedVertices.clear(), vb.checkedIndices = 0, vb.swept = false, vb.checkedLayout = layout_;
     const bool remember = maxVertex >= 0 && maxVertex < (int64_t(1) << 26);
     if (remember && vb.checkedVertices.empty()) vb.checkedVertices.assign(size_t(maxVertex) / 64 + 1, 0);
+    // Once the draws have checked about half as many indices as the buffer has vertices, every vertex
+    // is checked in one sequential sweep (no index reads, no scattered vertex reads); the loop below
+    // then reads only the bitmap for valid vertices, and reports the invalid ones as before.
+    if (remember && !vb.swept && (vb.checkedIndices += count) > uint64_t(maxVertex) / 2) {
+      vb.swept = true;
+      for (uint64_t v = 0; v <= uint64_t(maxVertex); ++v)
+        if (vertexValid(data, v, stride, attrs, n)) vb.checkedVertices[v >> 6] |= uint64_t(1) << (v & 63);
+    }
     bool reportedFinite = false, reportedU32 = false;
     for (uint32_t k = 0; k < count; ++k) {
       const uint32_t v = vertexOf(k);
@@ -763,8 +784,8 @@ class Validator {
         const Attr& a = attrs[i];
         const bool position = a.location == 0 && a.type == AttribType::F32;
         if (!(position && !reportedFinite) && !(a.type == AttribType::U32 && !reportedU32)) continue;
-        uint8_t fetched[16];
-        data.read(uint64_t(v) * stride + a.offset, a.bytes, fetched);
+        uint8_t scratch[16];
+        const uint8_t* fetched = data.view(uint64_t(v) * stride + a.offset, a.bytes, scratch);
         for (int c = 0; c < a.components; ++c) {
           const uint32_t bits = readLe32(fetched + 4 * c);
           if (position && (bits & 0x7f800000u) == 0x7f800000u) {
@@ -784,6 +805,25 @@ class Validator {
       }
       if (remember && checkedAll && !reportedFinite && !reportedU32) vb.checkedVertices[v >> 6] |= uint64_t(1) << (v & 63);
     }
+  }
+
+  // Whether vertex v, whose every fetch is inside the buffer, passes checkVertices' checks: a finite
+  // F32 position (location 0) and U32 values below 2^24.
+  template <class Attr>
+  static bool vertexValid(const ShadowBuffer& data, uint64_t v, uint64_t stride, const Attr* attrs, int n) {
+    for (int i = 0; i < n; ++i) {
+      const Attr& a = attrs[i];
+      const bool position = a.location == 0 && a.type == AttribType::F32;
+      if (!position && a.type != AttribType::U32) continue;
+      uint8_t scratch[16];
+      const uint8_t* fetched = data.view(v * stride + a.offset, a.bytes, scratch);
+      for (int c = 0; c < a.components; ++c) {
+        const uint32_t bits = readLe32(fetched + 4 * c);
+        if (position && (bits & 0x7f800000u) == 0x7f800000u) return false;
+        if (a.type == AttribType::U32 && bits >= kMaxExactU32) return false;
+      }
+    }
+    return true;
   }
 
   const CommandList& list_;

@@ -17,6 +17,7 @@ struct Rendered {
   std::vector<std::vector<uint8_t>> images;  // top-down pixels of each presented image
   std::vector<std::string> hashes;
   detail::PipelineStats stats;
+  StageTimes times;  // its skipped-work counts (hierarchical Z)
 };
 
 inline Rendered renderList(const CommandList& list, int threads) {
@@ -29,6 +30,7 @@ inline Rendered renderList(const CommandList& list, int threads) {
     r.hashes.push_back(imageSha256(t, p.level, p.layer));
   }
   r.stats = b.stats();
+  r.times = b.stageTimes();
   return r;
 }
 

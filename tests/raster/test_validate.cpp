@@ -442,6 +442,32 @@ TEST(Validate, AVertexFoundValidUnderOneLayoutIsCheckedAgainUnderAnother) {
   expectOnlyOnLast(f.l, "vertex 0: position (location 0) component 3 is nan");
 }
 
+TEST(Validate, ASweptBufferStillReportsTheInvalidVerticesADrawReads) {
+  // After draws have checked enough indices, validate() checks the whole buffer in one sweep and
+  // then reads only its record per index. A draw that reads vertex 5 (NaN position, U32 id 2^24, and
+  // vertex 7's id too) must still get both reports; the draws before, which skip them, none.
+  std::vector<Vertex> vertices;
+  for (int i = 0; i < 8; ++i) vertices.push_back({{float(i % 2), float(i / 2), 0, 1}, uint32_t(i)});
+  vertices[5].pos[1] = std::numeric_limits<float>::quiet_NaN();
+  vertices[5].id = vertices[7].id = 1u << 24;
+  Frame f(vertices);
+  f.l.draw(0, 3);  // 3 indices: not yet swept (8 vertices)
+  f.l.draw(1, 3);  // 6 > 7 / 2: the sweep
+  f.l.draw(2, 3);
+  EXPECT_TRUE(validate(f.l).empty()) << dump(validate(f.l));
+  f.l.draw(3, 3);  // vertices 3, 4, 5
+  const auto diags = validate(f.l);
+  ASSERT_EQ(diags.size(), 2u) << dump(diags);
+  EXPECT_NE(diags[0].message.find("vertex 5: position (location 0) component 1 is nan"), std::string::npos)
+      << dump(diags);
+  EXPECT_NE(diags[1].message.find("vertex 5: U32 attribute at location 1 component 0 = 16777216"), std::string::npos)
+      << dump(diags);
+  f.l.draw(5, 3);  // vertices 5, 6, 7: vertex 5 again, and vertex 7's id
+  const auto more = validate(f.l);
+  ASSERT_EQ(more.size(), 4u) << dump(more);
+  EXPECT_NE(more[3].message.find("vertex 5: U32"), std::string::npos) << dump(more);
+}
+
 TEST(Validate, AHugeSparselyUploadedBufferIsCheckedExactlyAndCheaply) {
   // 1 GiB declared, 48 bytes uploaded: never-uploaded bytes read as zero, and validate() must not
   // allocate the declared size. Vertex 0's position starts 2 bytes before a 64 KiB boundary, so the
