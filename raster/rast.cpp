@@ -4,6 +4,9 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "raster/fragops.h"
 #include "raster/provenance.h"
@@ -299,22 +302,35 @@ class TriangleRasterizer {
   }
 
   // The largest non-NaN depth stored in the block at (bx, by) within the target; -inf if none. Per
-  // column first (independent lanes a compiler may vectorize), then across the columns.
+  // column first, then across the columns. Only the skip decision depends on it, never a byte: any
+  // upper bound of the block's non-NaN depths is sound, and this one is exact.
   float storedDepthMax(int32_t bx, int32_t by) const {
     const int32_t w = std::min(kBlockSize, xLast_ - bx + 1), h = std::min(kBlockSize, yLast_ - by + 1);
+    constexpr float kLow = -std::numeric_limits<float>::infinity();
+#if defined(__SSE2__)
+    if (w == kBlockSize) {
+      // A whole row is two vectors. MAXPS(a, b) returns b when a is NaN, so a NaN keeps the column's
+      // maximum, as in the scalar loop below (which a compiler does not vectorize).
+      __m128 lo = _mm_set1_ps(kLow), hi = lo;
+      for (int32_t y = 0; y < h; ++y) {
+        const float* row = reinterpret_cast<const float*>(depth_.at(bx, by + y));
+        lo = _mm_max_ps(_mm_loadu_ps(row), lo);
+        hi = _mm_max_ps(_mm_loadu_ps(row + 4), hi);
+      }
+      __m128 m = _mm_max_ps(lo, hi);  // no NaN is left
+      m = _mm_max_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(1, 0, 3, 2)));
+      m = _mm_max_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(2, 3, 0, 1)));
+      return _mm_cvtss_f32(m);
+    }
+#endif
     float col[kBlockSize];
-    for (float& c : col) c = -std::numeric_limits<float>::infinity();
+    for (float& c : col) c = kLow;
     for (int32_t y = 0; y < h; ++y) {
-      float row[kBlockSize];
       const uint8_t* src = depth_.at(bx, by + y);
-      if (w == kBlockSize) {  // a whole row: one fixed-size copy, the loop below in vector lanes
-        std::memcpy(row, src, sizeof row);
-        for (int32_t x = 0; x < kBlockSize; ++x) col[x] = row[x] > col[x] ? row[x] : col[x];  // a NaN keeps col
-      } else {
-        for (int32_t x = 0; x < w; ++x) {
-          std::memcpy(&row[x], src + sizeof(float) * size_t(x), sizeof(float));
-          col[x] = row[x] > col[x] ? row[x] : col[x];
-        }
+      for (int32_t x = 0; x < w; ++x) {
+        float v;
+        std::memcpy(&v, src + sizeof(float) * size_t(x), sizeof v);
+        col[x] = v > col[x] ? v : col[x];  // a NaN keeps col
       }
     }
     float m = col[0];
