@@ -4,6 +4,9 @@
 // SIMD target, which walks every block; and the frames must actually skip blocks (StageTimes).
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -34,8 +37,9 @@ struct Layer {
 };
 
 // Each layer in its own colour (flat) or with its own texture (textured, alpha cutoff 0.5 on a
-// checker whose light cells are opaque and dark cells transparent).
-CommandList frame(const std::vector<Layer>& layers) {
+// checker whose light cells are opaque and dark cells transparent). The depth target starts cleared to
+// 1, or with `depth` (kW x kH floats, row 0 first) uploaded.
+CommandList frame(const std::vector<Layer>& layers, const std::vector<float>& depth = {}) {
   CommandList cl;
   RenderTarget t;
   t.color[0] = createTarget(cl, Format::RGBA8, kW, kH);
@@ -43,7 +47,13 @@ CommandList frame(const std::vector<Layer>& layers) {
   cl.setRenderTarget(t);
   cl.setViewport({0, 0, kW, kH});
   cl.clearColor(0, {0.1f, 0.2f, 0.3f, 1});
-  cl.clearDepth(1.0f);
+  if (depth.empty()) {
+    cl.clearDepth(1.0f);
+  } else {
+    std::vector<uint8_t> bytes(depth.size() * sizeof(float));
+    std::memcpy(bytes.data(), depth.data(), bytes.size());
+    cl.uploadTexture(t.depth, 0, 0, bytes);
+  }
   Mesh m;
   for (const Layer& l : layers)
     m.quad({l.x0, l.y0, l.zLeft}, {l.x1, l.y0, l.zRight}, {l.x1, l.y1, l.zRight}, {l.x0, l.y1, l.zLeft}, {0, 0, 0, 0},
@@ -78,9 +88,10 @@ CommandList frame(const std::vector<Layer>& layers) {
 
 // The frame on the best SIMD target at 1, 2 and 7 threads gives the reference target's bytes and
 // counters; returns the blocks the best target skipped (the reference target skips none).
-uint64_t expectReferenceBytes(const std::vector<Layer>& layers, const std::string& what) {
+uint64_t expectReferenceBytes(const std::vector<Layer>& layers, const std::string& what,
+                              const std::vector<float>& depth = {}) {
   const SimdTargetGuard guard;
-  const CommandList cl = frame(layers);
+  const CommandList cl = frame(layers, depth);
   simd::forceTarget("reference");
   const Rendered reference = renderList(cl, 1);
   EXPECT_EQ(reference.times.hizBlocksSkipped, 0u) << what << ": the reference target walks every block";
@@ -164,6 +175,25 @@ TEST(HierarchicalZ, ALayerThatDoesNotWriteDepthLeavesTheBoundValid) {
                     {-1, -1, 1, 1, 0.5f, 0.5f},    // skipped
                 },
                 "no depth write"),
+            20u);
+}
+
+TEST(HierarchicalZ, StoredNaNDepthsFailEveryTestAndDoNotHideTheRestOfTheBlock) {
+  // A depth target uploaded with NaNs among 0.9 and 0.35 in 4x4 cells: a NaN fails LESS and LEQUAL
+  // whatever arrives, so a block's bound is its largest other depth. A bound that let a NaN replace
+  // the larger depths seen before it would hide the layer at 0.5 where 0.9 is stored.
+  std::vector<float> depth(size_t(kW) * kH);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x)
+      depth[size_t(y) * kW + size_t(x)] = (x * 7 + y * 3) % 5 == 0 ? std::numeric_limits<float>::quiet_NaN()
+                                          : (x / 4 + y / 4) % 2 ? 0.9f : 0.35f;
+  EXPECT_GT(expectReferenceBytes(
+                {
+                    {-1, -1, 1, 1, 0.0f, 0.0f},                          // window 0.5: passes at 0.9 only
+                    {-1, -1, 1, 1, 0.0f, 0.0f, CompareFunc::LEqual},     // equal where written
+                    {-1, -1, 1, 1, 0.2f, 0.2f, CompareFunc::LEqual},     // window 0.6: skipped
+                },
+                "stored NaNs", depth),
             20u);
 }
 
