@@ -575,6 +575,26 @@ struct QuadDerivatives {
   bool finite() const { return std::isfinite(dudx) && std::isfinite(dvdx) && std::isfinite(dudy) && std::isfinite(dvdy); }
 };
 
+// The cache's plan moved to lambda8 from cache.lambda8, on the same unit. Under a *_MIPMAP_LINEAR min
+// filter, two minifying lambdas (> 0, the mag/min switch of makePlan's cached form) with the same
+// integer part and non-zero fractions choose the same two levels (makePlan: d1 = floor(lambda),
+// d2 = d1 + 1, both clamped to q, and the same level count), so only the weights of a two-level plan
+// change, to makePlan's; any other change takes a new plan.
+void replan(const TexUnit& u, PlanCache& cache, int32_t lambda8) {
+  const Filter mf = u.sampler.state.minFilter;
+  const int32_t old = cache.lambda8;
+  if ((mf == Filter::LinearMipmapLinear || mf == Filter::NearestMipmapLinear) && cache.plan.complete && old > 0 &&
+      lambda8 > 0 && (old >> 8) == (lambda8 >> 8) && (old & 0xff) != 0 && (lambda8 & 0xff) != 0) {
+    if (cache.plan.levelCount == 2) {
+      const uint32_t frac = uint32_t(lambda8 & 0xff);
+      cache.plan.levelWeight[0] = kLevelWeightOne - frac;
+      cache.plan.levelWeight[1] = frac;
+    }
+    return;
+  }
+  cache.plan = makePlan(u, lambda8);
+}
+
 // Brings the open plan cache to the quad's lambda and plan; false, leaving it alone, when a derivative
 // is not finite (the caller then computes them without the cache).
 bool updatePlanCache(const TexUnit& u, const QuadDerivatives& d, float bias) {
@@ -588,7 +608,8 @@ bool updatePlanCache(const TexUnit& u, const QuadDerivatives& d, float bias) {
   const bool valid = cache.validEpoch == cache.epoch && cache.unit == &u;
   if (!valid || cache.rho2Bits != rho2Bits || cache.biasBits != biasBits) {
     const int32_t lambda8 = computeLambda(d.dudx, d.dvdx, d.dudy, d.dvdy, u.sampler, bias);
-    if (!valid || cache.lambda8 != lambda8) cache.plan = makePlan(u, lambda8);
+    if (!valid) cache.plan = makePlan(u, lambda8);
+    else if (cache.lambda8 != lambda8) replan(u, cache, lambda8);
     cache.unit = &u, cache.rho2Bits = rho2Bits, cache.biasBits = biasBits, cache.lambda8 = lambda8;
     cache.validEpoch = cache.epoch;
   }
