@@ -603,11 +603,13 @@ bool updatePlanCache(const TexUnit& u, const QuadDerivatives& d, float bias) {
   // rho^2 exactly as computeLambda forms it (same operands, same order).
   const double rx = d.dudx * d.dudx + d.dvdx * d.dvdx;
   const double ry = d.dudy * d.dudy + d.dvdy * d.dvdy;
-  const uint64_t rho2Bits = std::bit_cast<uint64_t>(rx > ry ? rx : ry);
+  const double rho2 = rx > ry ? rx : ry;
+  const uint64_t rho2Bits = std::bit_cast<uint64_t>(rho2);
   const uint32_t biasBits = std::bit_cast<uint32_t>(bias);
   const bool valid = cache.validEpoch == cache.epoch && cache.unit == &u;
   if (!valid || cache.rho2Bits != rho2Bits || cache.biasBits != biasBits) {
-    const int32_t lambda8 = computeLambda(d.dudx, d.dvdx, d.dudy, d.dvdy, u.sampler, bias);
+    // computeLambda's steps for finite derivatives, on the rho^2 it would form.
+    const int32_t lambda8 = sample_detail::finishLambda(sample_detail::lambdaBaseFromRho2(rho2), u.sampler, bias);
     if (!valid) cache.plan = makePlan(u, lambda8);
     else if (cache.lambda8 != lambda8) replan(u, cache, lambda8);
     cache.unit = &u, cache.rho2Bits = rho2Bits, cache.biasBits = biasBits, cache.lambda8 = lambda8;
