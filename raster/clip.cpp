@@ -35,11 +35,11 @@ inline bool planeEnabled(int p, uint8_t clipMask) {
 
 }  // namespace
 
-ClipResult classifyTriangle(const VertexOut (&v)[3], uint8_t clipMask) {
+ClipResult classifyTriangle(const VertexOut* const (&v)[3], uint8_t clipMask) {
   // One bit per plane (planeDistance's numbering) that the vertex lies outside of.
   uint32_t out[3];
   for (int i = 0; i < 3; ++i) {
-    const VertexOut& o = v[i];
+    const VertexOut& o = *v[i];
     // Non-finite positions (possible only through program arithmetic; validation rejects non-finite
     // input positions) make the primitive undefined in GL; the oracle discards it.
     if (!std::isfinite(o.pos[0]) || !std::isfinite(o.pos[1]) || !std::isfinite(o.pos[2]) || !std::isfinite(o.pos[3]))

@@ -28,7 +28,12 @@ enum class ClipResult { Inside, Outside, Clipped };
 
 // Classifies the triangle. Inside: no plane cuts it (use the original vertices unchanged).
 // Outside: all three vertices lie strictly outside one plane. Otherwise Clipped.
-ClipResult classifyTriangle(const VertexOut (&v)[3], uint8_t clipMask);
+// The vertices are read in place (setup passes pointers into the vertex stage's output).
+ClipResult classifyTriangle(const VertexOut* const (&v)[3], uint8_t clipMask);
+inline ClipResult classifyTriangle(const VertexOut (&v)[3], uint8_t clipMask) {
+  const VertexOut* const p[3] = {&v[0], &v[1], &v[2]};
+  return classifyTriangle(p, clipMask);
+}
 
 // Clips the triangle; returns the number of polygon vertices written to `out` (0 if nothing is
 // left, otherwise >= 3).

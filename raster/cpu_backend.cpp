@@ -358,13 +358,13 @@ struct CpuBackend::Impl {
 
   // The signature of one primitive of the draw: the base, the position inputs of its vertices
   // (attribute 0) and their post-vertex-stage positions and clip distances, bitwise, and its layer.
-  static uint64_t depthSig(const DrawState& ds, const VertexIn* (&in)[3], const VertexOut (&v)[3], uint32_t layer) {
+  static uint64_t depthSig(const DrawState& ds, const VertexIn* (&in)[3], const VertexOut* const (&v)[3], uint32_t layer) {
     if (ds.program->hasGeometryStage()) return 0;
     uint64_t h = ds.depthSigBase;
     for (int k = 0; k < 3; ++k) {
       h = sigMixFloats(h, in[k]->attr[0].data(), 4);
-      h = sigMixFloats(h, v[k].pos.data(), 4);
-      h = sigMixFloats(h, v[k].clip, kMaxClipDistances);
+      h = sigMixFloats(h, v[k]->pos.data(), 4);
+      h = sigMixFloats(h, v[k]->clip, kMaxClipDistances);
     }
     return sigFinish(sigMix(h, layer));
   }
@@ -528,15 +528,20 @@ struct CpuBackend::Impl {
         const uint32_t t0 = uint32_t((c - p.firstChunk) * kSetupChunk);
         const uint32_t t1 = std::min<uint32_t>(p.triCount, t0 + uint32_t(kSetupChunk));
         for (uint32_t t = t0; t < t1; ++t) {
-          VertexOut v[3];
+          // The vertices in place; a program with a geometry stage changes its own copies.
+          const VertexOut* vp[3];
           const VertexIn* vin[3];
           for (int k = 0; k < 3; ++k) {
             const size_t s = p.dense ? idx[3 * t + uint32_t(k)] - p.lo : 3 * t + uint32_t(k);
-            v[k] = out[s];
+            vp[k] = &out[s];
             vin[k] = &in[s];
           }
           uint32_t layer = 0;
           const uint32_t primitiveId = p.firstTri + t;  // gl_PrimitiveID: the triangle's place in its draw
+          VertexOut v[3];
+          if (ds.program->hasGeometryStage()) {
+            for (int k = 0; k < 3; ++k) v[k] = *vp[k], vp[k] = &v[k];
+          }
           if (ds.program->hasGeometryStage() && !ds.program->shadeTriangle(v, primitiveId, layer, ds.ctx)) {
             ++sink.stats.primitives_assembled;
             ++sink.stats.primitives_dropped_by_program;
@@ -554,9 +559,9 @@ struct CpuBackend::Impl {
             layer = target.layer;  // gl_Layer is ignored for a non-layered target
           }
           const size_t first = sink.tris.size();
-          setupTriangle(v, primitiveId, layer, params, sink);
+          setupTriangle(vp, primitiveId, layer, params, sink);
           if (params.provenance) {
-            const uint64_t sig = depthSig(ds, vin, v, layer);
+            const uint64_t sig = depthSig(ds, vin, vp, layer);
             for (size_t i = first; i < sink.tris.size(); ++i) sink.tris[i].depthSig = sig;
           }
         }

@@ -248,23 +248,25 @@ class TriangleRasterizer {
       // its mask alone, with no depth to interpolate.
       if (!(ds_.depth.test && scene_.target.depth)) return visibleBlock(bx, by, mask);
     }
-    for (int ry = 0; mask && ry < kBlockSize; ry += 2)
-      for (int rx = 0; rx < kBlockSize; rx += 2) {
-        // Quad pixel p = x + 2 y is bit 8 (ry + y) + rx + x of the mask.
-        const uint64_t bits = mask >> (8 * ry + rx);
-        const uint8_t cov = uint8_t((bits & 3) | (bits >> 8 & 3) << 2);
-        if (!cov) continue;
-        int64_t eq[3];  // the edge values at the quad's pixel 0
-        for (int i = 0; i < 3; ++i) eq[i] = be.e0[i] + rx * be.dx[i] + ry * be.dy[i];
-        if (gathered_) {
-          gather(bx + rx, by + ry, cov, eq);
-        } else {
-          int64_t e[4][3];
-          for (int i = 0; i < 3; ++i)
-            for (int p = 0; p < 4; ++p) e[p][i] = eq[i] + quadStep_[i][p];
-          quad(bx + rx, by + ry, cov, e);
-        }
+    // The quads with a covered pixel, as the bit of their pixel 0 (8 ry + rx, ry and rx even), visited in
+    // increasing order: row by row, left to right.
+    for (uint64_t quads = (mask | mask >> 1 | mask >> 8 | mask >> 9) & 0x0055005500550055u; quads; quads &= quads - 1) {
+      const int bit = std::countr_zero(quads);
+      const int ry = bit >> 3, rx = bit & 7;
+      // Quad pixel p = x + 2 y is bit 8 (ry + y) + rx + x of the mask.
+      const uint64_t bits = mask >> bit;
+      const uint8_t cov = uint8_t((bits & 3) | (bits >> 8 & 3) << 2);
+      int64_t eq[3];  // the edge values at the quad's pixel 0
+      for (int i = 0; i < 3; ++i) eq[i] = be.e0[i] + rx * be.dx[i] + ry * be.dy[i];
+      if (gathered_) {
+        gather(bx + rx, by + ry, cov, eq);
+      } else {
+        int64_t e[4][3];
+        for (int i = 0; i < 3; ++i)
+          for (int p = 0; p < 4; ++p) e[p][i] = eq[i] + quadStep_[i][p];
+        quad(bx + rx, by + ry, cov, e);
       }
+    }
     if (gathered_) runGathered();
   }
 

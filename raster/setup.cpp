@@ -217,7 +217,7 @@ void appendToScene(SetupSink& sink, Scene& scene, PipelineStats& stats) {
   }
 }
 
-void setupTriangle(const VertexOut (&v)[3], uint32_t primitiveId, uint32_t layer, const SetupParams& params,
+void setupTriangle(const VertexOut* const (&v)[3], uint32_t primitiveId, uint32_t layer, const SetupParams& params,
                    SetupSink& sink) {
   PipelineStats& stats = sink.stats;
   ++stats.primitives_assembled;
@@ -231,21 +231,22 @@ void setupTriangle(const VertexOut (&v)[3], uint32_t primitiveId, uint32_t layer
     WindowVertex w[3];
     // w == 0 passes every clip plane only at the clip-space origin; the vertex has no window
     // position, so the primitive is dropped (GL leaves it undefined).
-    if (!(v[0].pos[3] > 0.0f && v[1].pos[3] > 0.0f && v[2].pos[3] > 0.0f)) {
+    if (!(v[0]->pos[3] > 0.0f && v[1]->pos[3] > 0.0f && v[2]->pos[3] > 0.0f)) {
       ++stats.primitives_culled;
       return;
     }
     for (int i = 0; i < 3; ++i) {
-      const double pos[4] = {v[i].pos[0], v[i].pos[1], v[i].pos[2], v[i].pos[3]};
+      const double pos[4] = {v[i]->pos[0], v[i]->pos[1], v[i]->pos[2], v[i]->pos[3]};
       w[i] = toWindow(pos, params.viewport);
-      w[i].varF = v[i].var;
+      w[i].varF = v[i]->var;
     }
-    binTriangle(w[0], w[1], w[2], v[2], primitiveId, layer, false, params, sink, binned);
+    binTriangle(w[0], w[1], w[2], *v[2], primitiveId, layer, false, params, sink, binned);
   } else {
     ++stats.primitives_clipped;
+    const VertexOut c[3] = {*v[0], *v[1], *v[2]};  // the clipping functions take the vertices by value
     ClipVertex poly[kMaxClipPolygon];
     const uint64_t clip0 = params.timeStages ? stageClock() : 0;
-    const int n = clipTriangle(v, params.raster.clipMask, params.varyings, poly);
+    const int n = clipTriangle(c, params.raster.clipMask, params.varyings, poly);
     if (params.timeStages) sink.clipTicks += stageClock() - clip0;
     WindowVertex w[kMaxClipPolygon];
     for (int i = 0; i < n; ++i)
@@ -253,18 +254,18 @@ void setupTriangle(const VertexOut (&v)[3], uint32_t primitiveId, uint32_t layer
         ++stats.primitives_culled;
         return;
       }
-    const double mag = params.provenance ? clipMagnitude(v) : 0.0;
+    const double mag = params.provenance ? clipMagnitude(c) : 0.0;
     for (int i = 0; i < n; ++i) {
       w[i] = toWindow(poly[i].pos, params.viewport);
       w[i].var = poly[i].var;
       if (params.provenance) {
-        w[i].original = isOriginal(poly[i], v);
+        w[i].original = isOriginal(poly[i], c);
         w[i].errSub = w[i].original ? 0.0 : clipVertexErrorSub(poly[i].pos, mag, params.viewport);
       }
     }
     // Fan from the first vertex; every sub-triangle keeps the primitive's provoking vertex and id.
     for (int i = 1; i + 1 < n; ++i)
-      binTriangle(w[0], w[i], w[i + 1], v[2], primitiveId, layer, true, params, sink, binned,
+      binTriangle(w[0], w[i], w[i + 1], c[2], primitiveId, layer, true, params, sink, binned,
                   {i > 1, false, i + 2 < n});
   }
   if (!binned) ++stats.primitives_culled;

@@ -45,8 +45,9 @@ struct SetupSink {
   }
 };
 
-// Sets up one triangle (after the vertex/geometry stages) and records what survives in `sink`.
-void setupTriangle(const VertexOut (&v)[3], uint32_t primitiveId, uint32_t layer, const SetupParams& params,
+// Sets up one triangle (after the vertex/geometry stages) and records what survives in `sink`. The
+// vertices are read in place: most triangles need no copy of their 128-byte VertexOuts.
+void setupTriangle(const VertexOut* const (&v)[3], uint32_t primitiveId, uint32_t layer, const SetupParams& params,
                    SetupSink& sink);
 
 // Appends a sink's triangles to the scene and its bins, in order, and adds its stats. The triangles
