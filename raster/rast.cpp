@@ -127,13 +127,17 @@ template <Walk walk_>
 class TriangleRasterizer {
  public:
   TriangleRasterizer(const Scene& scene, const TriSetup& t, RastScratch& s, PipelineStats& stats, uint16_t id = 0)
+      : TriangleRasterizer(scene, t, s, stats, id, drawConsts(scene, t, s)) {}
+
+ private:
+  TriangleRasterizer(const Scene& scene, const TriSetup& t, RastScratch& s, PipelineStats& stats, uint16_t id,
+                     const DrawConsts& c)
       : scene_(scene), t_(t), ds_(*scene.states[t.drawState]), s_(s), stats_(stats),
-        lateDepth_(ds_.program->writesDepth()), sourceOver_(isSourceOver(ds_.blend)), unorm8Quad_(s.unorm8Quad),
-        unblendedRgba8_(!ds_.blend.enabled && allRgba8(scene, ds_)),
+        lateDepth_(c.lateDepth), sourceOver_(c.sourceOver), unorm8Quad_(s.unorm8Quad),
+        unblendedRgba8_(c.unblendedRgba8),
         // The LOD probe shades quad by quad, and a late depth test needs no early one: both stay per quad.
-        gathered_(s.quadDepths && s.quadVaryings && !lateDepth_ && !scene.lod), id_(id),
-        writesDepth_(walk_ != Walk::Owned && ds_.depth.test && scene.target.depth && ds_.depth.write),
-        hizFloor_(occlusionFloor()) {
+        gathered_(s.quadDepths && s.quadVaryings && !lateDepth_ && !scene.lod), depth_(c.depth), id_(id),
+        writesDepth_(walk_ != Walk::Owned && c.depthWrite), hizFloor_(occlusionFloor(c)) {
     beginPlanCache();  // a new triangle: no lambda or plan of another one is reused (sample.h)
     if (gathered_) {
       // The scalar code's conversions of the triangle's constants (rast.h), each exact.
@@ -146,11 +150,32 @@ class TriangleRasterizer {
       plane_.area2 = double(t.area2);
       plane_.varyings = ds_.varyings;
     }
-    const TargetView& tv = scene.target;
-    depth_ = Plane::of(tv.depth, tv.level, t.layer);
     // Only the attachments the program writes are ever addressed (flush() loops to colorOutputs).
-    for (int a = 0; a < ds_.colorOutputs; ++a) color_[a] = Plane::of(tv.color[size_t(a)], tv.level, t.layer);
+    for (int a = 0; a < ds_.colorOutputs; ++a) color_[a] = c.color[a];
   }
+
+  // The draw's DrawConsts (rast.h) for triangle t: RastScratch::drawConsts, made again when the draw or
+  // the layer changes (rasterizeTile resets it per tile: a scene's draw indices restart).
+  static const DrawConsts& drawConsts(const Scene& scene, const TriSetup& t, RastScratch& s) {
+    DrawConsts& c = s.drawConsts;
+    if (c.state == t.drawState && c.layer == t.layer) return c;
+    const DrawState& ds = *scene.states[t.drawState];
+    const TargetView& tv = scene.target;
+    c.state = t.drawState, c.layer = t.layer;
+    c.lateDepth = ds.program->writesDepth();
+    c.sourceOver = isSourceOver(ds.blend);
+    c.unblendedRgba8 = !ds.blend.enabled && allRgba8(scene, ds);
+    const bool depthTest = ds.depth.test && tv.depth;
+    c.depthWrite = depthTest && ds.depth.write;
+    // See occlusionFloor.
+    c.hizEligible = !c.lateDepth && s.quadDepths && !scene.provenance && tv.layer != kLayered && depthTest &&
+                    (ds.depth.func == CompareFunc::Less || ds.depth.func == CompareFunc::LEqual);
+    c.depth = Plane::of(tv.depth, tv.level, t.layer);
+    for (int a = 0; a < ds.colorOutputs; ++a) c.color[a] = Plane::of(tv.color[size_t(a)], tv.level, t.layer);
+    return c;
+  }
+
+ public:
 
   void run(const TileRect& tile) {
     const int32_t x0 = std::max(t_.minX, tile.x0), x1 = std::min(t_.maxX, tile.x1);
@@ -185,25 +210,7 @@ class TriangleRasterizer {
  private:
   static constexpr int64_t kStep = kSubpixelOne;  // one pixel in sub-pixels
 
-  // One (level, layer) image of an attachment, addressed like TextureData::texel() without
-  // recomputing the level's size per pixel.
-  struct Plane {
-    uint8_t* base = nullptr;
-    uint64_t rowBytes = 0;
-    uint32_t bpp = 0;
-    Format format = Format::RGBA8;
-    static Plane of(TextureData* tex, uint32_t level, uint32_t layer) {
-      if (!tex) return {};
-      const uint32_t bpp = texelBytes(tex->desc.format);
-      return {tex->texel(level, layer, 0, 0), uint64_t(levelWidth(tex->desc, level)) * bpp, bpp, tex->desc.format};
-    }
-    uint8_t* at(int32_t x, int32_t y) const { return base + uint64_t(uint32_t(y)) * rowBytes + uint64_t(uint32_t(x)) * bpp; }
-    float depth(int32_t x, int32_t y) const {
-      float z;
-      std::memcpy(&z, at(x, y), sizeof z);
-      return z;
-    }
-  };
+  using Plane = AttachmentPlane;
 
   int64_t edgeAt(int i, int32_t x, int32_t y) const {
     return t_.a[i] * ((int64_t(x) << kSubpixelBits) + kSubpixelHalf) +
@@ -280,12 +287,9 @@ class TriangleRasterizer {
   // walks that run the early test on the interpolated depth (not a program's gl_FragDepth), with the
   // kernels (the "reference" target walks every block: the tests compare the two), one owner of the
   // target's depth per tile (not a layered target) and not in provenance mode.
-  float occlusionFloor() const {
+  float occlusionFloor(const DrawConsts& c) const {
     constexpr float kNone = std::numeric_limits<float>::quiet_NaN();
-    if (walk_ == Walk::Owned || lateDepth_ || !s_.quadDepths || scene_.provenance || scene_.target.layer == kLayered ||
-        !ds_.depth.test || !scene_.target.depth)
-      return kNone;
-    if (ds_.depth.func != CompareFunc::Less && ds_.depth.func != CompareFunc::LEqual) return kNone;
+    if (walk_ == Walk::Owned || !c.hizEligible) return kNone;
     for (int i = 0; i < 3; ++i)
       if (!(t_.z[i] >= 0.0f && t_.z[i] <= std::numeric_limits<float>::max())) return kNone;
     return std::min(std::min(t_.z[0], t_.z[1]), t_.z[2]);
@@ -627,12 +631,12 @@ class TriangleRasterizer {
   const Unorm8QuadFn unorm8Quad_;  // the running SIMD target's unorm8 conversion (RastScratch)
   const bool unblendedRgba8_;  // no blending, and every written attachment is RGBA8 or absent
   const bool gathered_;  // blocks' quads go through the interpolation kernels (runGathered)
+  const Plane depth_;
   InterpolationPlane plane_{};
   size_t pending_ = 0;  // quads gathered from the block being walked
   int32_t xLast_ = 0, yLast_ = 0;  // the tile's last column and row (inside the target)
   BlockEdges edges_;  // the coverage kernel's input (raster/coverage_simd.h)
   int64_t quadStep_[3][4];  // setQuadSteps
-  Plane depth_;
   Plane color_[kMaxColorAttachments];
   size_t count_ = 0;
   // Visibility and Owned (last, so the immediate walk's members keep their place).
@@ -742,6 +746,7 @@ void rasterizeTile(const Scene& scene, size_t tileIndex, RastScratch& scratch, P
   scratch.blockCoverage = blockCoverageKernel();
   bindSampleKernels();
   scratch.hizKnown = 0;  // the depth target may have changed since this thread's last tile
+  scratch.drawConsts.state = UINT32_MAX;  // and the scene's draws are others
   const int32_t tx = int32_t(tileIndex % size_t(scene.tilesX)), ty = int32_t(tileIndex / size_t(scene.tilesX));
   const TileRect tile{tx * kTileSize, ty * kTileSize, std::min((tx + 1) * kTileSize, scene.target.width) - 1,
                       std::min((ty + 1) * kTileSize, scene.target.height) - 1};

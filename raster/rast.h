@@ -28,6 +28,38 @@
 
 namespace tessera::detail {
 
+// One (level, layer) image of an attachment, addressed like TextureData::texel() without
+// recomputing the level's size per pixel.
+struct AttachmentPlane {
+  uint8_t* base = nullptr;
+  uint64_t rowBytes = 0;
+  uint32_t bpp = 0;
+  Format format = Format::RGBA8;
+  static AttachmentPlane of(TextureData* tex, uint32_t level, uint32_t layer) {
+    if (!tex) return {};
+    const uint32_t bpp = texelBytes(tex->desc.format);
+    return {tex->texel(level, layer, 0, 0), uint64_t(levelWidth(tex->desc, level)) * bpp, bpp, tex->desc.format};
+  }
+  uint8_t* at(int32_t x, int32_t y) const { return base + uint64_t(uint32_t(y)) * rowBytes + uint64_t(uint32_t(x)) * bpp; }
+  float depth(int32_t x, int32_t y) const {
+    float z;
+    std::memcpy(&z, at(x, y), sizeof z);
+    return z;
+  }
+};
+
+// What the walk of a triangle derives from its draw state, its layer and the scene's target: the same
+// for every triangle of a draw in a tile, so rast.cpp computes it once per draw and layer (drawConsts).
+struct DrawConsts {
+  uint32_t state = UINT32_MAX, layer = 0;  // the key; state UINT32_MAX: nothing cached
+  bool lateDepth = false;       // the program writes gl_FragDepth
+  bool sourceOver = false;      // blending is SRC_ALPHA, ONE_MINUS_SRC_ALPHA, ADD
+  bool unblendedRgba8 = false;  // no blending, every written attachment RGBA8 or absent
+  bool depthWrite = false;      // the depth test is on with a depth target, and depth writes are on
+  bool hizEligible = false;     // the hierarchical Z may skip blocks (rast.cpp, occlusionFloor)
+  AttachmentPlane depth, color[kMaxColorAttachments];
+};
+
 // Per-thread scratch memory, allocated once and reused for every tile.
 struct RastScratch {
   static constexpr size_t kBatch = 64;  // quads per fragment-program call
@@ -76,6 +108,7 @@ struct RastScratch {
   // Work the fast path skipped, for benchmarks and tests (StageTimes; not a GL counter): blocks and
   // fragments found hidden by the hierarchical Z without being walked.
   uint64_t hizBlocksSkipped = 0, hizFragmentsSkipped = 0;
+  DrawConsts drawConsts;  // of the last draw walked in this tile (reset per tile)
 };
 
 void rasterizeTile(const Scene& scene, size_t tileIndex, RastScratch& scratch, PipelineStats& stats);
