@@ -398,21 +398,23 @@ class TriangleRasterizer {
   void visibleBlock(int32_t bx, int32_t by, uint64_t mask) {
     if (!mask) return;
     uint16_t* row = s_.owner + size_t(by - tileY0_) * kTileSize + size_t(bx - tileX0_);
+    const uint16_t ids[kBlockSize] = {id_, id_, id_, id_, id_, id_, id_, id_};
     for (int y = 0; y < kBlockSize; ++y, row += kTileSize) {
       const uint32_t bits = uint32_t(mask >> (8 * y)) & 0xffu;
+      if (bits == 0xffu) {  // a whole row in one copy
+        std::memcpy(row, ids, sizeof ids);
+        continue;
+      }
       for (int x = 0; x < kBlockSize; ++x)
         if (bits >> x & 1) row[x] = id_;
     }
-    for (int ry = 0; ry < kBlockSize; ry += 2)
-      for (int rx = 0; rx < kBlockSize; rx += 2) {
-        const uint64_t bits = mask >> (8 * ry + rx);
-        const uint64_t n = quadPixels(uint32_t((bits & 3) | (bits >> 8 & 3) << 2));
-        if (!n) continue;
-        stats_.quads_shaded += 1;
-        stats_.fragments_shaded += n;
-        stats_.helper_invocations += 4 - n;
-        stats_.pixels_written += n;
-      }
+    // The counters of its quads: those with a covered pixel, and their covered pixels.
+    const uint64_t quads = uint64_t(std::popcount((mask | mask >> 1 | mask >> 8 | mask >> 9) & 0x0055005500550055u));
+    const uint64_t n = uint64_t(std::popcount(mask));
+    stats_.quads_shaded += quads;
+    stats_.fragments_shaded += n;
+    stats_.helper_invocations += 4 * quads - n;
+    stats_.pixels_written += n;
   }
 
   // The early depth test of a quad's four pixels as a mask (bit p: pixel p passes), without a branch
@@ -695,6 +697,13 @@ void groupOwnedQuads(const TileRect& tile, size_t ids, RastScratch& s) {
       // A quad past the target's last row or column reads owner 0 there: nothing owns it.
       const uint16_t* o = s.owner + size_t(y - tile.y0) * kTileSize + size_t(x - tile.x0);
       const uint16_t id[4] = {o[0], o[1], o[kTileSize], o[kTileSize + 1]};
+      if (id[0] == id[1] && id[0] == id[2] && id[0] == id[3]) {  // the common case: one owner or none
+        if (id[0]) {
+          s.ownedTemp.push_back({x, y, uint8_t(0xF), id[0]});
+          ++s.ownedStart[size_t(id[0]) + 1];
+        }
+        continue;
+      }
       for (int p = 0; p < 4; ++p) {
         if (!id[p]) continue;
         int q = 0;
