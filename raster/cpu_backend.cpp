@@ -358,7 +358,8 @@ struct CpuBackend::Impl {
 
   // The signature of one primitive of the draw: the base, the position inputs of its vertices
   // (attribute 0) and their post-vertex-stage positions and clip distances, bitwise, and its layer.
-  static uint64_t depthSig(const DrawState& ds, const VertexIn* (&in)[3], const VertexOut* const (&v)[3], uint32_t layer) {
+  static uint64_t depthSig(const DrawState& ds, const VertexIn* (&in)[3], const VertexOut* const (&v)[3],
+                           uint32_t layer) {
     if (ds.program->hasGeometryStage()) return 0;
     uint64_t h = ds.depthSigBase;
     for (int k = 0; k < 3; ++k) {

@@ -240,7 +240,8 @@ class TriangleRasterizer {
     uint64_t mask = full ? ~uint64_t(0) : s_.blockCoverage(be);
     if (!inside) mask &= boxMask(bx, by, x0, y0, x1, y1);
     if (!mask) return;
-    const size_t b = size_t((by - tileY0_) / kBlockSize) * RastScratch::kBlocksPerRow + size_t((bx - tileX0_) / kBlockSize);
+    const size_t b =
+        size_t((by - tileY0_) / kBlockSize) * RastScratch::kBlocksPerRow + size_t((bx - tileX0_) / kBlockSize);
     if (hizFloor_ == hizFloor_ && occluded(b, bx, by)) {
       // Every covered pixel fails the early depth test, as the walk would have counted them.
       const uint64_t n = uint64_t(std::popcount(mask));

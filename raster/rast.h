@@ -40,7 +40,9 @@ struct AttachmentPlane {
     const uint32_t bpp = texelBytes(tex->desc.format);
     return {tex->texel(level, layer, 0, 0), uint64_t(levelWidth(tex->desc, level)) * bpp, bpp, tex->desc.format};
   }
-  uint8_t* at(int32_t x, int32_t y) const { return base + uint64_t(uint32_t(y)) * rowBytes + uint64_t(uint32_t(x)) * bpp; }
+  uint8_t* at(int32_t x, int32_t y) const {
+    return base + uint64_t(uint32_t(y)) * rowBytes + uint64_t(uint32_t(x)) * bpp;
+  }
   float depth(int32_t x, int32_t y) const {
     float z;
     std::memcpy(&z, at(x, y), sizeof z);

@@ -24,7 +24,7 @@ namespace {
 
 // An odd size: two by two tiles, the right and top ones partial, so blocks reach past the last column
 // and row (their largest stored depth must come from the pixels inside the target only).
-constexpr int kW = 97, kH = 79;
+constexpr int kOddWidth = 97, kOddHeight = 79;
 
 // One draw of the frame: a rectangle in NDC, its depth running from zLeft to zRight (NDC) across it.
 struct Layer {
@@ -38,14 +38,14 @@ struct Layer {
 
 // Each layer in its own colour (flat) or with its own texture (textured, alpha cutoff 0.5 on a
 // checker whose light cells are opaque and dark cells transparent). The depth target starts cleared to
-// 1, or with `depth` (kW x kH floats, row 0 first) uploaded.
+// 1, or with `depth` (kOddWidth x kOddHeight floats, row 0 first) uploaded.
 CommandList frame(const std::vector<Layer>& layers, const std::vector<float>& depth = {}) {
   CommandList cl;
   RenderTarget t;
-  t.color[0] = createTarget(cl, Format::RGBA8, kW, kH);
-  t.depth = createTarget(cl, Format::D32F, kW, kH);
+  t.color[0] = createTarget(cl, Format::RGBA8, kOddWidth, kOddHeight);
+  t.depth = createTarget(cl, Format::D32F, kOddWidth, kOddHeight);
   cl.setRenderTarget(t);
-  cl.setViewport({0, 0, kW, kH});
+  cl.setViewport({0, 0, kOddWidth, kOddHeight});
   cl.clearColor(0, {0.1f, 0.2f, 0.3f, 1});
   if (depth.empty()) {
     cl.clearDepth(1.0f);
@@ -136,7 +136,7 @@ TEST(HierarchicalZ, ACoplanarLayerPassesUnderLEqualAndFailsUnderLess) {
   // The LEQUAL layer's colour (layer 1) covers the target.
   const Rendered r = renderList(frame(layers), 2);
   ASSERT_EQ(r.images.size(), 1u);
-  const size_t centre = (size_t(kH / 2) * kW + kW / 2) * 4;
+  const size_t centre = (size_t(kOddHeight / 2) * kOddWidth + kOddWidth / 2) * 4;
   EXPECT_EQ(int(r.images[0][centre + 0]), 128);  // (1 % 3) / 2 = 0.5
   EXPECT_EQ(int(r.images[0][centre + 1]), 64);   // (1 % 5) / 4 = 0.25
 }
@@ -182,10 +182,10 @@ TEST(HierarchicalZ, StoredNaNDepthsFailEveryTestAndDoNotHideTheRestOfTheBlock) {
   // A depth target uploaded with NaNs among 0.9 and 0.35 in 4x4 cells: a NaN fails LESS and LEQUAL
   // whatever arrives, so a block's bound is its largest other depth. A bound that let a NaN replace
   // the larger depths seen before it would hide the layer at 0.5 where 0.9 is stored.
-  std::vector<float> depth(size_t(kW) * kH);
-  for (int y = 0; y < kH; ++y)
-    for (int x = 0; x < kW; ++x)
-      depth[size_t(y) * kW + size_t(x)] = (x * 7 + y * 3) % 5 == 0 ? std::numeric_limits<float>::quiet_NaN()
+  std::vector<float> depth(size_t(kOddWidth) * kOddHeight);
+  for (int y = 0; y < kOddHeight; ++y)
+    for (int x = 0; x < kOddWidth; ++x)
+      depth[size_t(y) * kOddWidth + size_t(x)] = (x * 7 + y * 3) % 5 == 0 ? std::numeric_limits<float>::quiet_NaN()
                                           : (x / 4 + y / 4) % 2 ? 0.9f : 0.35f;
   EXPECT_GT(expectReferenceBytes(
                 {

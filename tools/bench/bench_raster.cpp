@@ -32,7 +32,7 @@ static bool g_stages = false;
 static bool g_provenance = false;
 
 static void renderList(benchmark::State& state, const std::string& name, const CommandList& list) {
-  uint64_t fragments = 0;
+  uint64_t fragments = 0, hizBlocks = 0, hizFragments = 0;
   double constructMs = 0, validateMs = 0, resourcesMs = 0;
   StageTimes sum;
   RenderOptions o{int(state.range(0))};
@@ -50,6 +50,7 @@ static void renderList(benchmark::State& state, const std::string& name, const C
     sum.vertexMs += st.vertexMs, sum.clipMs += st.clipMs, sum.setupMs += st.setupMs, sum.binMs += st.binMs;
     sum.rastMs += st.rastMs, sum.shadeMs += st.shadeMs, sum.sampleMs += st.sampleMs, sum.fragopsMs += st.fragopsMs;
     fragments += b.stats().fragments_shaded;
+    hizBlocks += st.hizBlocksSkipped, hizFragments += st.hizFragmentsSkipped;
     benchmark::DoNotOptimize(b.stats().pixels_written);
   }
   state.SetItemsProcessed(int64_t(fragments));
@@ -57,6 +58,9 @@ static void renderList(benchmark::State& state, const std::string& name, const C
   state.counters["construct_ms"] = constructMs;  // once per benchmark: the backend renders every iteration
   state.counters["validate_ms"] = avg(validateMs);
   state.counters["resources_ms"] = avg(resourcesMs);
+  // Work the hierarchical Z skipped per frame (raster/rast.cpp): blocks and fragments never walked.
+  state.counters["hiz_blocks"] = avg(double(hizBlocks));
+  state.counters["hiz_fragments"] = avg(double(hizFragments));
   if (g_stages) {
     state.counters["stage_vertex_ms"] = avg(sum.vertexMs);
     state.counters["stage_clip_ms"] = avg(sum.clipMs);
