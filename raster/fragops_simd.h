@@ -7,7 +7,13 @@
 // and subtracting 1.5 * 2^52 (valid below 2^51, as raster/round.h's roundHalfEvenNear), and selects 0
 // where !(c > 0) and 255 where c >= 1, the same comparisons in the same order as toUnorm8; the integer
 // in [0, 255] then narrows exactly. Under "reference" it is toUnorm8 per value.
-// Does not implement: blending, other formats (fragops.cpp writeFragment).
+//
+// Also blendSourceOverQuadKernel(): fragops.h blendSourceOverRgba8 for a whole quad, whose bytes are
+// that function's: the per-pixel factors a = clamp01(src alpha), 1 - a and the destination doubles
+// (texel / 255 from the same table) are formed as there, and each lane runs the same IEEE double
+// operations in the same order (clamp01 of the source, s * a, d * (1 - a), their sum) followed by
+// toUnorm8's steps as above. No operation is fused or reordered.
+// Does not implement: other blend forms, other formats (fragops.cpp writeFragment).
 #pragma once
 
 #include <cstdint>
@@ -19,5 +25,10 @@ using Unorm8QuadFn = void (*)(const float* in, uint8_t* out);
 
 // The kernel of the target running now. Resolve it once per triangle: a dispatch calls into libhwy.
 Unorm8QuadFn unorm8QuadKernel();
+
+// texels[4 p + k] = blendSourceOverRgba8(src + 4 p, texels + 4 p)[k] for the quad's pixels p < 4:
+// src is the program's RGBA per pixel, texels the destination RGBA8 bytes, updated in place.
+using BlendSourceOverQuadFn = void (*)(const float* src, uint8_t* texels);
+BlendSourceOverQuadFn blendSourceOverQuadKernel();
 
 }  // namespace tessera::detail

@@ -134,7 +134,7 @@ class TriangleRasterizer {
                      const DrawConsts& c)
       : scene_(scene), t_(t), ds_(*scene.states[t.drawState]), s_(s), stats_(stats),
         lateDepth_(c.lateDepth), sourceOver_(c.sourceOver), unorm8Quad_(s.unorm8Quad),
-        unblendedRgba8_(c.unblendedRgba8),
+        unblendedRgba8_(c.unblendedRgba8), sourceOverRgba8_(c.sourceOverRgba8),
         // The LOD probe shades quad by quad, and a late depth test needs no early one: both stay per quad.
         gathered_(s.quadDepths && s.quadVaryings && !lateDepth_ && !scene.lod), depth_(c.depth), id_(id),
         writesDepth_(walk_ != Walk::Owned && c.depthWrite), hizFloor_(occlusionFloor(c)) {
@@ -165,6 +165,7 @@ class TriangleRasterizer {
     c.lateDepth = ds.program->writesDepth();
     c.sourceOver = isSourceOver(ds.blend);
     c.unblendedRgba8 = !ds.blend.enabled && allRgba8(scene, ds);
+    c.sourceOverRgba8 = c.sourceOver && allRgba8(scene, ds);
     const bool depthTest = ds.depth.test && tv.depth;
     c.depthWrite = depthTest && ds.depth.write;
     // See occlusionFloor.
@@ -577,6 +578,26 @@ class TriangleRasterizer {
         if (scene_.lod) recordLod(q, keep);
         continue;
       }
+      if (keep == 0xF && sourceOverRgba8_) {
+        // The source-over blend of a whole quad: blendSourceOverRgba8's bytes, four pixels at once
+        // (raster/fragops_simd.h); the pixels are distinct, so their order is not observable.
+        if (depthWrite) {
+          std::memcpy(depth_.at(q.x, q.y), z, 2 * sizeof(float));
+          std::memcpy(depth_.at(q.x, q.y + 1), z + 2, 2 * sizeof(float));
+        }
+        for (int a = 0; a < ds_.colorOutputs; ++a) {
+          if (!color_[a].base) continue;
+          uint8_t texels[16];
+          std::memcpy(texels, color_[a].at(q.x, q.y), 8);
+          std::memcpy(texels + 8, color_[a].at(q.x, q.y + 1), 8);
+          s_.blendSourceOverQuad(s_.outs[n].color[a][0].f, texels);
+          std::memcpy(color_[a].at(q.x, q.y), texels, 8);
+          std::memcpy(color_[a].at(q.x, q.y + 1), texels + 8, 8);
+        }
+        if (!owned) stats_.pixels_written += 4;
+        if (scene_.lod) recordLod(q, keep);
+        continue;
+      }
       for (int p = 0; p < 4; ++p) {
         if (!(keep >> p & 1)) continue;
         const int32_t x = q.x + (p & 1), y = q.y + (p >> 1);
@@ -633,6 +654,7 @@ class TriangleRasterizer {
   const bool sourceOver_;  // blending is SRC_ALPHA, ONE_MINUS_SRC_ALPHA, ADD (blendSourceOverRgba8)
   const Unorm8QuadFn unorm8Quad_;  // the running SIMD target's unorm8 conversion (RastScratch)
   const bool unblendedRgba8_;  // no blending, and every written attachment is RGBA8 or absent
+  const bool sourceOverRgba8_;  // source-over blending, and every written attachment is RGBA8 or absent
   const bool gathered_;  // blocks' quads go through the interpolation kernels (runGathered)
   const Plane depth_;
   InterpolationPlane plane_{};
@@ -751,6 +773,7 @@ void rasterizeTile(const Scene& scene, size_t tileIndex, RastScratch& scratch, P
   if (scene.timeStages) setSampleTicks(&scratch.ticks.t[kStageSample]);
   // The SIMD kernels once per tile (a dispatch calls into libhwy; the target cannot change mid-frame).
   scratch.unorm8Quad = unorm8QuadKernel();
+  scratch.blendSourceOverQuad = blendSourceOverQuadKernel();
   scratch.quadDepths = quadDepthsKernel();
   scratch.quadVaryings = quadVaryingsKernel();
   scratch.blockCoverage = blockCoverageKernel();

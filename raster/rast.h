@@ -57,6 +57,7 @@ struct DrawConsts {
   bool lateDepth = false;       // the program writes gl_FragDepth
   bool sourceOver = false;      // blending is SRC_ALPHA, ONE_MINUS_SRC_ALPHA, ADD
   bool unblendedRgba8 = false;  // no blending, every written attachment RGBA8 or absent
+  bool sourceOverRgba8 = false;  // source-over blending, every written attachment RGBA8 or absent
   bool depthWrite = false;      // the depth test is on with a depth target, and depth writes are on
   bool hizEligible = false;     // the hierarchical Z may skip blocks (rast.cpp, occlusionFloor)
   AttachmentPlane depth, color[kMaxColorAttachments];
@@ -72,6 +73,7 @@ struct RastScratch {
   StageTicks ticks;   // Scene::timeStages: this thread's time per stage (stage_times.h)
   // The colour write's unorm8 kernel (raster/fragops_simd.h), resolved per tile by rasterizeTile.
   Unorm8QuadFn unorm8Quad = nullptr;
+  BlendSourceOverQuadFn blendSourceOverQuad = nullptr;  // the same for a source-over blend
   // The interpolation kernels (raster/interpolate_simd.h), resolved per tile; nullptr under
   // "reference", where every quad takes interpolateQuadDepth / interpolateQuadVaryings below.
   QuadDepthsFn quadDepths = nullptr;
