@@ -33,27 +33,23 @@ void Unorm8Quad(const float* in, uint8_t* out) {
 Unorm8QuadFn GetUnorm8Quad() { return &Unorm8Quad; }
 
 void BlendSourceOverQuad(const float* src, uint8_t* texels) {
-  const hn::CappedTag<double, 4> d;
+  const hn::CappedTag<double, 4> d;  // at most one pixel per vector: 4, 2 or 1 lanes
   const hn::Rebind<float, decltype(d)> df;
   const hn::Rebind<int32_t, decltype(d)> di;
   const hn::Rebind<uint8_t, decltype(d)> du8;
   const size_t n = hn::Lanes(d);
-  // Per value, the pixel's factors and the destination as blendSourceOverRgba8 forms them (scalar).
+  // Each pixel's factors a = clamp01(alpha) and 1 - a, as blendSourceOverRgba8 forms them.
   const auto clamp01 = [](double v) { return v > 0.0 ? (v < 1.0 ? v : 1.0) : 0.0; };  // NaN -> 0
-  alignas(32) double a[16], na[16], dst[16];
-  for (int p = 0; p < 4; ++p) {
-    const double ap = clamp01(src[4 * p + 3]), nap = 1.0 - ap;
-    for (int k = 0; k < 4; ++k) {
-      a[4 * p + k] = ap, na[4 * p + k] = nap;
-      dst[4 * p + k] = kUnorm8ToDouble.v[texels[4 * p + k]];
-    }
-  }
+  double a[4], na[4];
+  for (int p = 0; p < 4; ++p) a[p] = clamp01(src[4 * p + 3]), na[p] = 1.0 - a[p];
   const auto zero = hn::Zero(d), one = hn::Set(d, 1.0), max = hn::Set(d, 255.0);
   const auto magic = hn::Set(d, 6755399441055744.0);  // 1.5 * 2^52
   for (size_t off = 0; off < 16; off += n) {
     const auto v = hn::PromoteTo(d, hn::LoadU(df, src + off));
     const auto s = hn::IfThenElse(hn::Gt(v, zero), hn::IfThenElse(hn::Lt(v, one), v, one), zero);  // clamp01
-    const auto c = hn::Add(hn::Mul(s, hn::LoadU(d, a + off)), hn::Mul(hn::LoadU(d, dst + off), hn::LoadU(d, na + off)));
+    // The destination byte as kUnorm8ToDouble holds it: the IEEE quotient byte / 255.
+    const auto dst = hn::Div(hn::PromoteTo(d, hn::PromoteTo(di, hn::LoadU(du8, texels + off))), max);
+    const auto c = hn::Add(hn::Mul(s, hn::Set(d, a[off / 4])), hn::Mul(dst, hn::Set(d, na[off / 4])));
     const auto r = hn::Sub(hn::Add(hn::Mul(c, max), magic), magic);  // toUnorm8: c * 255 rounded half to even
     const auto u = hn::IfThenElse(hn::Gt(c, zero), hn::IfThenElse(hn::Ge(c, one), max, r), zero);
     hn::StoreU(hn::DemoteTo(du8, hn::DemoteTo(di, u)), du8, texels + off);  // integers in [0, 255]: exact

@@ -9,8 +9,9 @@
 // in [0, 255] then narrows exactly. Under "reference" it is toUnorm8 per value.
 //
 // Also blendSourceOverQuadKernel(): fragops.h blendSourceOverRgba8 for a whole quad, whose bytes are
-// that function's: the per-pixel factors a = clamp01(src alpha), 1 - a and the destination doubles
-// (texel / 255 from the same table) are formed as there, and each lane runs the same IEEE double
+// that function's: the per-pixel factors a = clamp01(src alpha) and 1 - a are formed as there, the
+// destination doubles are the IEEE quotients texel / 255 that its table holds, and each lane runs the
+// same IEEE double
 // operations in the same order (clamp01 of the source, s * a, d * (1 - a), their sum) followed by
 // toUnorm8's steps as above. No operation is fused or reordered.
 // Does not implement: other blend forms, other formats (fragops.cpp writeFragment).
