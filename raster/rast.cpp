@@ -177,7 +177,6 @@ class TriangleRasterizer {
   }
 
  public:
-
   void run(const TileRect& tile) {
     const int32_t x0 = std::max(t_.minX, tile.x0), x1 = std::min(t_.maxX, tile.x1);
     const int32_t y0 = std::max(t_.minY, tile.y0), y1 = std::min(t_.maxY, tile.y1);
