@@ -561,37 +561,23 @@ class TriangleRasterizer {
         for (int a = 0; a < ds_.colorOutputs; ++a)
           if (color_[a].base && color_[a].format == Format::RGBA8)
             unorm8Quad_(s_.outs[n].color[a][0].f, unorm[a]);
-      if (keep == 0xF && unblendedRgba8_) {
-        // The common write of a whole quad: each row's two pixels in one copy. The pixels of a quad are
-        // distinct, so the order of their writes is not observable.
+      if (keep == 0xF && (unblendedRgba8_ || sourceOverRgba8_)) {
+        // The common write of a whole quad: each row's two pixels in one copy, unblended or blended
+        // source over four pixels at once (raster/fragops_simd.h: blendSourceOverRgba8's bytes). The
+        // pixels of a quad are distinct, so the order of their writes is not observable.
         if (depthWrite) {
           std::memcpy(depth_.at(q.x, q.y), z, 2 * sizeof(float));
           std::memcpy(depth_.at(q.x, q.y + 1), z + 2, 2 * sizeof(float));
         }
         for (int a = 0; a < ds_.colorOutputs; ++a) {
           if (!color_[a].base) continue;
+          if (sourceOverRgba8_) {
+            std::memcpy(unorm[a], color_[a].at(q.x, q.y), 8);
+            std::memcpy(unorm[a] + 8, color_[a].at(q.x, q.y + 1), 8);
+            s_.blendSourceOverQuad(s_.outs[n].color[a][0].f, unorm[a]);
+          }
           std::memcpy(color_[a].at(q.x, q.y), unorm[a], 8);
           std::memcpy(color_[a].at(q.x, q.y + 1), unorm[a] + 8, 8);
-        }
-        if (!owned) stats_.pixels_written += 4;
-        if (scene_.lod) recordLod(q, keep);
-        continue;
-      }
-      if (keep == 0xF && sourceOverRgba8_) {
-        // The source-over blend of a whole quad: blendSourceOverRgba8's bytes, four pixels at once
-        // (raster/fragops_simd.h); the pixels are distinct, so their order is not observable.
-        if (depthWrite) {
-          std::memcpy(depth_.at(q.x, q.y), z, 2 * sizeof(float));
-          std::memcpy(depth_.at(q.x, q.y + 1), z + 2, 2 * sizeof(float));
-        }
-        for (int a = 0; a < ds_.colorOutputs; ++a) {
-          if (!color_[a].base) continue;
-          uint8_t texels[16];
-          std::memcpy(texels, color_[a].at(q.x, q.y), 8);
-          std::memcpy(texels + 8, color_[a].at(q.x, q.y + 1), 8);
-          s_.blendSourceOverQuad(s_.outs[n].color[a][0].f, texels);
-          std::memcpy(color_[a].at(q.x, q.y), texels, 8);
-          std::memcpy(color_[a].at(q.x, q.y + 1), texels + 8, 8);
         }
         if (!owned) stats_.pixels_written += 4;
         if (scene_.lod) recordLod(q, keep);
