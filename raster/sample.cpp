@@ -13,6 +13,7 @@
 // (exact) and rounded to float once.
 #include "raster/sample.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -504,6 +505,162 @@ uint32_t sampleBlended(const TexUnit& u, const Plan& p, float s, float t, uint32
   sampleN(u, p, 1, &s, &t, &layer, v);
   for (int c = 0; c < 4; ++c) out[c] = v[0][c];
   return 0;
+}
+
+namespace {
+
+// One axis of one level at one coordinate, as accumulateLevel finds it: the wrapped texel indices
+// (-1 = border) and, for LINEAR, the 8-bit weight of the second.
+struct AxisTap {
+  int32_t i0 = 0, i1 = 0;
+  uint32_t w = 0;
+};
+
+inline AxisTap axisTap(const Plan& p, Wrap wrap, float x, float scale, int32_t size) {
+  AxisTap a;
+  const float u = x * scale;  // GL 4.6 §8.14.2, in float32 as accumulateLevel
+  if (!p.linear) {
+    a.i0 = wrapIndex(wrap, nearestIndex(u), size);
+    return a;
+  }
+  const int64_t U = linearFixed(u);
+  a.w = uint32_t(U & 0xff);
+  wrapPair(wrap, U >> 8, size, a.i0, a.i1);
+  return a;
+}
+
+// A grid point's running sums over the levels, and the byte range of the taps given weight.
+struct GridPoint {
+  uint32_t acc[4];
+  uint8_t lo[4], hi[4];
+  bool fractional;
+};
+
+// One row's part of a level's filter at one s coordinate: (256 - a) t0 + a t1 per channel for
+// LINEAR (t0 alone for NEAREST), and the byte range of the taps given weight (t1 only if a != 0).
+struct RowTerm {
+  uint32_t h[4];
+  uint8_t lo[4], hi[4];
+};
+
+// accumulateLevel<F, kBorder, true> at every grid point, factored by rows: its sum
+// levelW ((256-a)(256-b) t00 + a(256-b) t10 + (256-a) b t01 + a b t11) is, in exact uint32 integers
+// (every partial sum is at most 255 x 2^24), levelW ((256-b) H(j0) + b H(j1)) with
+// H(j) = (256-a) t(i0, j) + a t(i1, j), and the grid's t coordinates mostly share their rows. The
+// taps logged are accumulateLevel's: t00; t10 if a != 0; t01 if b != 0; t11 if both.
+template <Format F, bool kBorder>
+void gridLevel(const Plan& p, const LevelRef& L, uint32_t layer, uint32_t levelW, const float* s, int ns,
+               const float* t, int nt, GridPoint* g) {
+  constexpr uint32_t bpt = texelBytes(F);
+  constexpr int C = Fmt<F>::kChannels;
+  const uint8_t* base = L.data + layer * L.layerStride;
+  AxisTap xs[kGridMax], ys[kGridMax];
+  for (int a = 0; a < ns; ++a) xs[a] = axisTap(p, p.wrapS, s[a], L.fw, L.w);
+  for (int b = 0; b < nt; ++b) ys[b] = axisTap(p, p.wrapT, t[b], L.fh, L.h);
+  // The distinct rows the t coordinates weigh, and each coordinate's one or two of them.
+  int32_t rows[2 * kGridMax];
+  int nr = 0;
+  int rowOf[kGridMax][2];
+  auto rowIndex = [&](int32_t j) {
+    for (int r = 0; r < nr; ++r)
+      if (rows[r] == j) return r;
+    rows[nr] = j;
+    return nr++;
+  };
+  for (int b = 0; b < nt; ++b) {
+    rowOf[b][0] = rowIndex(ys[b].i0);
+    rowOf[b][1] = ys[b].w != 0 ? rowIndex(ys[b].i1) : rowOf[b][0];
+  }
+  RowTerm rt[kGridMax][2 * kGridMax];
+  for (int a = 0; a < ns; ++a) {
+    const AxisTap& x = xs[a];
+    for (int r = 0; r < nr; ++r) {
+      RowTerm& h = rt[a][r];
+      const uint8_t* t0 = texelAt<kBorder>(p, base, L, x.i0, rows[r], bpt);
+      if (!p.linear || x.w == 0) {
+        for (int c = 0; c < C; ++c) h.h[c] = channel<F>(t0, c) * kWeightOne, h.lo[c] = h.hi[c] = t0[c];
+        continue;
+      }
+      const uint8_t* t1 = texelAt<kBorder>(p, base, L, x.i1, rows[r], bpt);
+      for (int c = 0; c < C; ++c) {
+        h.h[c] = channel<F>(t0, c) * (kWeightOne - x.w) + channel<F>(t1, c) * x.w;
+        h.lo[c] = std::min(t0[c], t1[c]), h.hi[c] = std::max(t0[c], t1[c]);
+      }
+    }
+  }
+  for (int a = 0; a < ns; ++a)
+    for (int b = 0; b < nt; ++b) {
+      GridPoint& q = g[a * nt + b];
+      const RowTerm& h0 = rt[a][rowOf[b][0]];
+      if (!p.linear) {  // h0.h = t x 256: levelW x 2^16 x t as accumulateLevel's NEAREST weight
+        const uint32_t w = levelW * kWeightOne;
+        for (int c = 0; c < C; ++c)
+          q.acc[c] += h0.h[c] * w, q.lo[c] = std::min(q.lo[c], h0.lo[c]), q.hi[c] = std::max(q.hi[c], h0.hi[c]);
+        continue;
+      }
+      const AxisTap& y = ys[b];
+      q.fractional = q.fractional || xs[a].w != 0 || y.w != 0;
+      if (y.w == 0) {
+        for (int c = 0; c < C; ++c)
+          q.acc[c] += h0.h[c] * kWeightOne * levelW, q.lo[c] = std::min(q.lo[c], h0.lo[c]),
+              q.hi[c] = std::max(q.hi[c], h0.hi[c]);
+        continue;
+      }
+      const RowTerm& h1 = rt[a][rowOf[b][1]];
+      const uint32_t nb = kWeightOne - y.w;
+      for (int c = 0; c < C; ++c) {
+        q.acc[c] += (h0.h[c] * nb + h1.h[c] * y.w) * levelW;
+        q.lo[c] = std::min({q.lo[c], h0.lo[c], h1.lo[c]});
+        q.hi[c] = std::max({q.hi[c], h0.hi[c], h1.hi[c]});
+      }
+    }
+}
+
+// samplePlanned's conversion and differingChannels' mask at every grid point: a channel is blended
+// where some weight was fractional (two levels, or a subtexel weight) and its logged taps differ.
+template <Format F>
+void gridUnorm(const Plan& p, const float* s, int ns, const float* t, int nt, uint32_t layer, float (*out)[4],
+               uint32_t* mask) {
+  constexpr int C = Fmt<F>::kChannels;
+  if (layer > p.lastLayer) layer = p.lastLayer;  // as samplePlanned
+  GridPoint g[kGridMax * kGridMax];
+  const int n = ns * nt;
+  for (int i = 0; i < n; ++i) {
+    for (int c = 0; c < 4; ++c) g[i].acc[c] = 0, g[i].lo[c] = 255, g[i].hi[c] = 0;
+    g[i].fractional = p.levelCount == 2;  // makePlan keeps a second level only with weight in (0, 1)
+  }
+  const bool border = p.wrapS == Wrap::ClampToBorder || p.wrapT == Wrap::ClampToBorder;
+  for (int l = 0; l < p.levelCount; ++l) {
+    if (border) {
+      gridLevel<F, true>(p, p.lv[l], layer, p.levelWeight[l], s, ns, t, nt, g);
+    } else {
+      gridLevel<F, false>(p, p.lv[l], layer, p.levelWeight[l], s, ns, t, nt, g);
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    uint32_t m = 0;
+    for (int c = 0; c < C; ++c) {
+      out[i][c] = float(double(g[i].acc[c]) * kUnormReciprocal);
+      if (g[i].fractional && g[i].lo[c] != g[i].hi[c]) m |= 1u << c;
+    }
+    for (int c = C; c < 4; ++c) out[i][c] = c == 3 ? 1.0f : 0.0f;
+    mask[i] = m;
+  }
+}
+
+}  // namespace
+
+void sampleBlendedGrid(const TexUnit& u, const Plan& p, const float* s, int ns, const float* t, int nt,
+                       uint32_t layer, float (*out)[4], uint32_t* mask) {
+  if (p.complete) {
+    switch (u.tex->desc.format) {
+      case Format::RGBA8: return gridUnorm<Format::RGBA8>(p, s, ns, t, nt, layer, out, mask);
+      case Format::R8: return gridUnorm<Format::R8>(p, s, ns, t, nt, layer, out, mask);
+      default: break;
+    }
+  }
+  for (int a = 0; a < ns; ++a)
+    for (int b = 0; b < nt; ++b) mask[a * nt + b] = sampleBlended(u, p, s[a], t[b], layer, out[a * nt + b]);
 }
 
 }  // namespace sample_detail

@@ -80,6 +80,15 @@ void sampleN(const TexUnit& u, const Plan& p, int n, const float* s, const float
 // the filter records the taps it weighs. Provenance mode asks both of every alternative.
 uint32_t sampleBlended(const TexUnit& u, const Plan& p, float s, float t, uint32_t layer, float out[4]);
 
+// sample.cpp: sampleBlended at every point (s[a], t[b]) of one plan and layer, a < ns, b < nt, each at
+// most kGridMax: out[a * nt + b] and mask[a * nt + b]. The same bits as sampleBlended point by point
+// (tests/raster/test_sample_grid.cpp); the texel index, wrap and weight along each axis are found once
+// per coordinate and level instead of once per point. Provenance mode's coordinate alternatives are
+// such a grid (sample_interval.cpp).
+constexpr int kGridMax = 8;
+void sampleBlendedGrid(const TexUnit& u, const Plan& p, const float* s, int ns, const float* t, int nt,
+                       uint32_t layer, float (*out)[4], uint32_t* mask);
+
 // sample_lod.cpp: lambda' and lambda from lambda_base (8.8): GL 4.6 §8.14.1, eq. 8.6 - 8.8.
 int32_t finishLambda(int32_t base, const SamplerQ& s, float shaderBias);
 

@@ -107,6 +107,33 @@ int coordCandidates(float x, double tol, const Plan& p, bool horizontal, float o
   return n;
 }
 
+// The lambda alternatives whose plans add nothing to an unorm lookup's groups, classes or group
+// order. Plans that blend the same two levels differ only in the second level's weight f (0 < f < 256):
+// each point's accumulator is 256 S0 + f (S1 - S0) in exact integers, and the taps given weight (so
+// the blended mask) do not depend on f. Over the pair's lambdas a point's value (a monotone function
+// of the accumulator) is then monotone in f: the least and greatest f reach the hull of the pair's
+// values, and if some f gives a value other than the oracle's, so does one of them (LOD_NEAR_SWITCH).
+// Every plan of a pair makes the same group keys, so keeping the pair's first plan keeps the order
+// in which groups are made. The oracle's plan (index 0) always stays. (With today's candidate order,
+// oracle, least, greatest, then ascending switch points, a pair's first plan is already the oracle's,
+// its least or its greatest; the rule keeps the order safe if that order changes.)
+void markInteriorWeights(const Plan* plans, int n, bool* interior) {
+  for (int i = 1; i < n; ++i) {
+    const Plan& p = plans[i];
+    if (!p.complete || p.levelCount != 2) continue;
+    int first = i, least = i, greatest = i;
+    for (int j = 0; j < n; ++j) {
+      const Plan& q = plans[j];
+      if (!q.complete || q.levelCount != 2 || q.lv[0].data != p.lv[0].data || q.lv[1].data != p.lv[1].data) continue;
+      if (j < first) first = j;
+      const uint32_t f = q.levelWeight[1];
+      if (f < plans[least].levelWeight[1] || (f == plans[least].levelWeight[1] && j < least)) least = j;
+      if (f > plans[greatest].levelWeight[1] || (f == plans[greatest].levelWeight[1] && j < greatest)) greatest = j;
+    }
+    interior[i] = i != first && i != least && i != greatest;
+  }
+}
+
 // One pass over the legal alternatives of one pixel's lookup, reading the image that
 // shadeProvenance().bound selects: the alternatives grouped by their discrete choice (GroupKey), each
 // group's box the hull of its alternatives, each alternative widened by the filter precision in the
@@ -170,6 +197,7 @@ void intervalPass(const TexUnit& u, float s, float t, float r, bool array, const
 
   const int channels = channelCount(d.format);
   // Adds one alternative to its group, widened by FILTER_PRECISION where its filter rounds.
+  int lastGroup = -1;
   auto addSample = [&](const Plan& p, uint32_t layer, int32_t a, int32_t b, uint32_t blended, const float v[4]) {
     float l[4], h[4];
     for (int c = 0; c < 4; ++c) {
@@ -185,11 +213,15 @@ void intervalPass(const TexUnit& u, float s, float t, float r, bool array, const
     key.w1 = p.levelCount == 2 ? p.lv[1].w : 0, key.h1 = p.levelCount == 2 ? p.lv[1].h : 0;
     key.levels = p.levelCount, key.linear = p.linear, key.layer = layer;
     key.a = p.linear ? -1 : a, key.b = p.linear ? -1 : b;
-    for (Group& g : groups)
-      if (g.key == key) {
-        g.box.add(l, h);
+    // The alternatives of one LINEAR plan and layer come in a row and share one group.
+    if (lastGroup >= 0 && groups[size_t(lastGroup)].key == key) return groups[size_t(lastGroup)].box.add(l, h);
+    for (size_t i = 0; i < groups.size(); ++i)
+      if (groups[i].key == key) {
+        lastGroup = int(i);
+        groups[i].box.add(l, h);
         return;
       }
+    lastGroup = int(groups.size());
     groups.push_back({key, {}});
     groups.back().box.init(l, h);
   };
@@ -224,13 +256,19 @@ void intervalPass(const TexUnit& u, float s, float t, float r, bool array, const
   // ends). A plan seen before adds nothing: its samples, groups and boxes are the same, and its
   // classes too, because the oracle's plan comes first (lam[0], pi = 0), so an earlier copy of any
   // plan already set every class a later copy could set.
-  Plan seen[2 * kMaxLam];
+  // Thread-local: a pass sees a few plans, and constructing 64 each pass cost more than comparing them.
+  thread_local Plan seen[2 * kMaxLam];
   int nSeen = 0;
+  thread_local Plan plans[kMaxLam];  // each lambda's plan with the oracle's switch point
+  for (int li = 0; li < nl; ++li) plans[li] = makePlan(u, lam[li]);
+  bool interior[kMaxLam] = {};
+  if (d.format == Format::RGBA8 || d.format == Format::R8) markInteriorWeights(plans, nl, interior);
   for (int pi = 0; pi < 2 * nl; ++pi) {
     const int li = pi >> 1;
     const bool alt = pi & 1;
     if (alt && !(halfSwitch && lam[li] > 0 && lam[li] <= 128)) continue;
-    const Plan p = makePlan(u, lam[li], alt ? 128 : 0);
+    if (!alt && interior[li]) continue;
+    const Plan p = alt ? makePlan(u, lam[li], 128) : plans[li];
     if (std::any_of(seen, seen + nSeen, [&](const Plan& q) { return samePlan(p, q); })) continue;
     seen[nSeen++] = p;
     const LevelRef& coarse = p.lv[p.levelCount - 1];
@@ -240,11 +278,14 @@ void intervalPass(const TexUnit& u, float s, float t, float r, bool array, const
     int nt = coordCandidates(t, tolT + (p.linear ? qT : 0.0), p, false, tc);
     sc[ns++] = s;
     tc[nt++] = t;
-    for (uint32_t layer = layerLo; layer <= layerHi; ++layer)
+    for (uint32_t layer = layerLo; layer <= layerHi; ++layer) {
+      float vs[kGridMax * kGridMax][4];
+      uint32_t masks[kGridMax * kGridMax];
+      sampleBlendedGrid(u, p, sc, ns, tc, nt, layer, vs, masks);
       for (int a = 0; a < ns; ++a)
         for (int b = 0; b < nt; ++b) {
-          float v[4];
-          addSample(p, layer, a, b, sampleBlended(u, p, sc[a], tc[b], layer, v), v);
+          const float* v = vs[a * nt + b];
+          addSample(p, layer, a, b, masks[a * nt + b], v);
           if (sameValue(v, nominal)) continue;
           // A class names the freedom that alone changes the value: the LOD with the nominal
           // coordinates and layer, or the coordinates with the oracle's LOD and layer. Combinations
@@ -253,6 +294,7 @@ void intervalPass(const TexUnit& u, float s, float t, float r, bool array, const
           if ((alt || lam[li] != lamOracle) && nominalCoords && nominalLayer) classes |= kLodNearSwitch;
           if (!alt && lam[li] == lamOracle && !nominalCoords && nominalLayer) classes |= kSubtexelNearHalf;
         }
+    }
   }
 }
 
