@@ -529,13 +529,6 @@ inline AxisTap axisTap(const Plan& p, Wrap wrap, float x, float scale, int32_t s
   return a;
 }
 
-// A grid point's running sums over the levels, and the byte range of the taps given weight.
-struct GridPoint {
-  uint32_t acc[4];
-  uint8_t lo[4], hi[4];
-  bool fractional;
-};
-
 // One row's part of a level's filter at one s coordinate: (256 - a) t0 + a t1 per channel for
 // LINEAR (t0 alone for NEAREST), and the byte range of the taps given weight (t1 only if a != 0).
 struct RowTerm {
@@ -543,14 +536,14 @@ struct RowTerm {
   uint8_t lo[4], hi[4];
 };
 
-// accumulateLevel<F, kBorder, true> at every grid point, factored by rows: its sum
-// levelW ((256-a)(256-b) t00 + a(256-b) t10 + (256-a) b t01 + a b t11) is, in exact uint32 integers
-// (every partial sum is at most 255 x 2^24), levelW ((256-b) H(j0) + b H(j1)) with
-// H(j) = (256-a) t(i0, j) + a t(i1, j), and the grid's t coordinates mostly share their rows. The
-// taps logged are accumulateLevel's: t00; t10 if a != 0; t01 if b != 0; t11 if both.
+// accumulateLevel<F, kBorder, true> with level weight 1 at every grid point, factored by rows: its
+// sum (256-a)(256-b) t00 + a(256-b) t10 + (256-a) b t01 + a b t11 is, in exact uint32 integers (at
+// most 255 x 2^16), (256-b) H(j0) + b H(j1) with H(j) = (256-a) t(i0, j) + a t(i1, j), and the grid's
+// t coordinates mostly share their rows. The taps logged are accumulateLevel's: t00; t10 if a != 0;
+// t01 if b != 0; t11 if both.
 template <Format F, bool kBorder>
-void gridLevel(const Plan& p, const LevelRef& L, uint32_t layer, uint32_t levelW, const float* s, int ns,
-               const float* t, int nt, GridPoint* g) {
+void gridLevel(const Plan& p, const LevelRef& L, uint32_t layer, const float* s, int ns, const float* t, int nt,
+               LevelGrid& g) {
   constexpr uint32_t bpt = texelBytes(F);
   constexpr int C = Fmt<F>::kChannels;
   const uint8_t* base = L.data + layer * L.layerStride;
@@ -590,58 +583,90 @@ void gridLevel(const Plan& p, const LevelRef& L, uint32_t layer, uint32_t levelW
   }
   for (int a = 0; a < ns; ++a)
     for (int b = 0; b < nt; ++b) {
-      GridPoint& q = g[a * nt + b];
+      const int i = a * nt + b;
       const RowTerm& h0 = rt[a][rowOf[b][0]];
-      if (!p.linear) {  // h0.h = t x 256: levelW x 2^16 x t as accumulateLevel's NEAREST weight
-        const uint32_t w = levelW * kWeightOne;
-        for (int c = 0; c < C; ++c)
-          q.acc[c] += h0.h[c] * w, q.lo[c] = std::min(q.lo[c], h0.lo[c]), q.hi[c] = std::max(q.hi[c], h0.hi[c]);
-        continue;
-      }
       const AxisTap& y = ys[b];
-      q.fractional = q.fractional || xs[a].w != 0 || y.w != 0;
-      if (y.w == 0) {
-        for (int c = 0; c < C; ++c)
-          q.acc[c] += h0.h[c] * kWeightOne * levelW, q.lo[c] = std::min(q.lo[c], h0.lo[c]),
-              q.hi[c] = std::max(q.hi[c], h0.hi[c]);
+      // NEAREST: h0.h = 256 t, times 256 is accumulateLevel's weight 2^16. LINEAR with b = 0: 256 H(j0).
+      if (!p.linear || y.w == 0) {
+        g.fractional[i] = p.linear && xs[a].w != 0;
+        for (int c = 0; c < C; ++c) g.sum[i][c] = h0.h[c] * kWeightOne, g.lo[i][c] = h0.lo[c], g.hi[i][c] = h0.hi[c];
         continue;
       }
       const RowTerm& h1 = rt[a][rowOf[b][1]];
       const uint32_t nb = kWeightOne - y.w;
+      g.fractional[i] = true;
       for (int c = 0; c < C; ++c) {
-        q.acc[c] += (h0.h[c] * nb + h1.h[c] * y.w) * levelW;
-        q.lo[c] = std::min({q.lo[c], h0.lo[c], h1.lo[c]});
-        q.hi[c] = std::max({q.hi[c], h0.hi[c], h1.hi[c]});
+        g.sum[i][c] = h0.h[c] * nb + h1.h[c] * y.w;
+        g.lo[i][c] = std::min(h0.lo[c], h1.lo[c]), g.hi[i][c] = std::max(h0.hi[c], h1.hi[c]);
       }
     }
 }
 
-// samplePlanned's conversion and differingChannels' mask at every grid point: a channel is blended
-// where some weight was fractional (two levels, or a subtexel weight) and its logged taps differ.
+// A level's grid, from the pass's memo when a plan before this one computed it (the key: the level's
+// texels, the layer, the texel filter and the coordinates' bits; wrap modes and border are the unit's).
+template <Format F>
+const LevelGrid& levelGrid(const Plan& p, const LevelRef& L, uint32_t layer, const float* s, int ns, const float* t,
+                           int nt, GridMemo* memo, LevelGrid& local, const LevelGrid* keep = nullptr) {
+  auto matches = [&](const LevelGrid& g) {
+    return g.data == L.data && g.layer == layer && g.linear == p.linear && g.ns == ns && g.nt == nt &&
+           std::memcmp(g.s, s, size_t(ns) * sizeof(float)) == 0 && std::memcmp(g.t, t, size_t(nt) * sizeof(float)) == 0;
+  };
+  LevelGrid* g = &local;
+  if (memo) {
+    for (int i = 0; i < memo->n; ++i)
+      if (matches(memo->e[i])) {
+        ++memo->hits;
+        return memo->e[i];
+      }
+    // Round robin, passing over `keep`: the first level's grid, still to be read.
+    if (&memo->e[memo->next] == keep) memo->next = (memo->next + 1) % GridMemo::kEntries;
+    g = &memo->e[memo->next];
+    memo->next = (memo->next + 1) % GridMemo::kEntries;
+    memo->n = std::min(memo->n + 1, GridMemo::kEntries);
+  }
+  g->data = L.data, g->layer = layer, g->linear = p.linear, g->ns = ns, g->nt = nt;
+  std::memcpy(g->s, s, size_t(ns) * sizeof(float));
+  std::memcpy(g->t, t, size_t(nt) * sizeof(float));
+  if (p.wrapS == Wrap::ClampToBorder || p.wrapT == Wrap::ClampToBorder) {
+    gridLevel<F, true>(p, L, layer, s, ns, t, nt, *g);
+  } else {
+    gridLevel<F, false>(p, L, layer, s, ns, t, nt, *g);
+  }
+  return *g;
+}
+
+// samplePlanned's sums, conversion and differingChannels' mask at every grid point: acc = the sum
+// over levels of levelWeight x the level's sum (exact uint32: accumulateLevel's integers); a channel
+// is blended where some weight was fractional (two levels, or a subtexel weight) and its taps differ.
 template <Format F>
 void gridUnorm(const Plan& p, const float* s, int ns, const float* t, int nt, uint32_t layer, float (*out)[4],
-               uint32_t* mask) {
+               uint32_t* mask, GridMemo* memo) {
   constexpr int C = Fmt<F>::kChannels;
   if (layer > p.lastLayer) layer = p.lastLayer;  // as samplePlanned
-  GridPoint g[kGridMax * kGridMax];
+  LevelGrid local[2];
+  const LevelGrid& g0 = levelGrid<F>(p, p.lv[0], layer, s, ns, t, nt, memo, local[0]);
   const int n = ns * nt;
-  for (int i = 0; i < n; ++i) {
-    for (int c = 0; c < 4; ++c) g[i].acc[c] = 0, g[i].lo[c] = 255, g[i].hi[c] = 0;
-    g[i].fractional = p.levelCount == 2;  // makePlan keeps a second level only with weight in (0, 1)
-  }
-  const bool border = p.wrapS == Wrap::ClampToBorder || p.wrapT == Wrap::ClampToBorder;
-  for (int l = 0; l < p.levelCount; ++l) {
-    if (border) {
-      gridLevel<F, true>(p, p.lv[l], layer, p.levelWeight[l], s, ns, t, nt, g);
-    } else {
-      gridLevel<F, false>(p, p.lv[l], layer, p.levelWeight[l], s, ns, t, nt, g);
+  if (p.levelCount == 1) {
+    const uint32_t w0 = p.levelWeight[0];
+    for (int i = 0; i < n; ++i) {
+      uint32_t m = 0;
+      for (int c = 0; c < C; ++c) {
+        out[i][c] = float(double(w0 * g0.sum[i][c]) * kUnormReciprocal);
+        if (g0.fractional[i] && g0.lo[i][c] != g0.hi[i][c]) m |= 1u << c;
+      }
+      for (int c = C; c < 4; ++c) out[i][c] = c == 3 ? 1.0f : 0.0f;
+      mask[i] = m;
     }
+    return;
   }
+  // makePlan keeps a second level only with weight in (0, 1): every point is fractional.
+  const LevelGrid& g1 = levelGrid<F>(p, p.lv[1], layer, s, ns, t, nt, memo, local[1], &g0);
+  const uint32_t w0 = p.levelWeight[0], w1 = p.levelWeight[1];
   for (int i = 0; i < n; ++i) {
     uint32_t m = 0;
     for (int c = 0; c < C; ++c) {
-      out[i][c] = float(double(g[i].acc[c]) * kUnormReciprocal);
-      if (g[i].fractional && g[i].lo[c] != g[i].hi[c]) m |= 1u << c;
+      out[i][c] = float(double(w0 * g0.sum[i][c] + w1 * g1.sum[i][c]) * kUnormReciprocal);
+      if (std::min(g0.lo[i][c], g1.lo[i][c]) != std::max(g0.hi[i][c], g1.hi[i][c])) m |= 1u << c;
     }
     for (int c = C; c < 4; ++c) out[i][c] = c == 3 ? 1.0f : 0.0f;
     mask[i] = m;
@@ -651,11 +676,11 @@ void gridUnorm(const Plan& p, const float* s, int ns, const float* t, int nt, ui
 }  // namespace
 
 void sampleBlendedGrid(const TexUnit& u, const Plan& p, const float* s, int ns, const float* t, int nt,
-                       uint32_t layer, float (*out)[4], uint32_t* mask) {
+                       uint32_t layer, float (*out)[4], uint32_t* mask, GridMemo* memo) {
   if (p.complete) {
     switch (u.tex->desc.format) {
-      case Format::RGBA8: return gridUnorm<Format::RGBA8>(p, s, ns, t, nt, layer, out, mask);
-      case Format::R8: return gridUnorm<Format::R8>(p, s, ns, t, nt, layer, out, mask);
+      case Format::RGBA8: return gridUnorm<Format::RGBA8>(p, s, ns, t, nt, layer, out, mask, memo);
+      case Format::R8: return gridUnorm<Format::R8>(p, s, ns, t, nt, layer, out, mask, memo);
       default: break;
     }
   }

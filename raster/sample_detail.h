@@ -85,9 +85,34 @@ uint32_t sampleBlended(const TexUnit& u, const Plan& p, float s, float t, uint32
 // (tests/raster/test_sample_grid.cpp); the texel index, wrap and weight along each axis are found once
 // per coordinate and level instead of once per point. Provenance mode's coordinate alternatives are
 // such a grid (sample_interval.cpp).
+//
+// memo (optional) keeps the last few level grids: the plans of one pass that share a level at the same
+// coordinates (a trilinear pair at several weights, a single level and a pair ending in it) compute
+// it once. Valid only while the unit, its sampler and shadeProvenance().bound stay the same: a pass
+// calls begin() first.
 constexpr int kGridMax = 8;
+// One level's filter at every grid point without its level weight: the sum of texel x weight (weights
+// summing to 2^16, exact in uint32), the byte range of the taps given weight, whether a weight was
+// fractional. The key is the level's texels, the layer, the texel filter and the coordinates.
+struct LevelGrid {
+  const uint8_t* data;
+  uint32_t layer;
+  bool linear;
+  int ns, nt;
+  float s[kGridMax], t[kGridMax];
+  uint32_t sum[kGridMax * kGridMax][4];
+  uint8_t lo[kGridMax * kGridMax][4], hi[kGridMax * kGridMax][4];
+  bool fractional[kGridMax * kGridMax];
+};
+struct GridMemo {
+  static constexpr int kEntries = 4;
+  LevelGrid e[kEntries];
+  int n = 0, next = 0;
+  uint64_t hits = 0;  // grids taken from the memo (tests)
+  void begin() { n = next = 0; }
+};
 void sampleBlendedGrid(const TexUnit& u, const Plan& p, const float* s, int ns, const float* t, int nt,
-                       uint32_t layer, float (*out)[4], uint32_t* mask);
+                       uint32_t layer, float (*out)[4], uint32_t* mask, GridMemo* memo = nullptr);
 
 // sample_lod.cpp: lambda' and lambda from lambda_base (8.8): GL 4.6 §8.14.1, eq. 8.6 - 8.8.
 int32_t finishLambda(int32_t base, const SamplerQ& s, float shaderBias);

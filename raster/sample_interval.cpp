@@ -260,6 +260,8 @@ void intervalPass(const TexUnit& u, float s, float t, float r, bool array, const
   thread_local Plan seen[2 * kMaxLam];
   int nSeen = 0;
   thread_local Plan plans[kMaxLam];  // each lambda's plan with the oracle's switch point
+  thread_local GridMemo memo;        // level grids shared by this pass's plans
+  memo.begin();
   for (int li = 0; li < nl; ++li) plans[li] = makePlan(u, lam[li]);
   bool interior[kMaxLam] = {};
   if (d.format == Format::RGBA8 || d.format == Format::R8) markInteriorWeights(plans, nl, interior);
@@ -281,7 +283,7 @@ void intervalPass(const TexUnit& u, float s, float t, float r, bool array, const
     for (uint32_t layer = layerLo; layer <= layerHi; ++layer) {
       float vs[kGridMax * kGridMax][4];
       uint32_t masks[kGridMax * kGridMax];
-      sampleBlendedGrid(u, p, sc, ns, tc, nt, layer, vs, masks);
+      sampleBlendedGrid(u, p, sc, ns, tc, nt, layer, vs, masks, &memo);
       for (int a = 0; a < ns; ++a)
         for (int b = 0; b < nt; ++b) {
           const float* v = vs[a * nt + b];

@@ -110,6 +110,38 @@ TEST(SampleGrid, EveryPointHasTheValueAndMaskOfItsOwnLookup) {
   EXPECT_LT(blended, points - points / 10);
 }
 
+TEST(SampleGrid, AMemoGivesEveryPlanTheGridItWouldComputeAlone) {
+  // A pass's plans share level grids through the memo. Successive lookups differ in one coordinate's
+  // last bit, the grid's size, the layer, the level pair's weight or the texel filter, so a memo key
+  // missing any of them would hand a plan another plan's grid.
+  std::mt19937 rng(11);
+  const TextureData tex = patchyTexture(Format::RGBA8, 12, 10, 4, 2, rng);
+  const int32_t lambdas[] = {260, 300, 380, 511, 512, 600};  // pair (1, 2) at four weights, level 2, pair (2, 3)
+  sample_detail::GridMemo memo;
+  memo.begin();
+  for (int trial = 0; trial < 1200; ++trial) {
+    const Filter minF = rng() % 2 ? Filter::LinearMipmapLinear : Filter::NearestMipmapLinear;
+    const TexUnit u = intervalUnit(tex, minF, Filter::Linear, Wrap::Repeat, Wrap::ClampToBorder);
+    const Plan p = makePlan(u, lambdas[rng() % 6]);
+    const int ns = 2 + int(rng() % 2), nt = 2 + int(rng() % 2);
+    float s[kGridMax], t[kGridMax];
+    for (int a = 0; a < ns; ++a) s[a] = 0.1f * float(a + 1);
+    for (int b = 0; b < nt; ++b) t[b] = 0.13f * float(b + 1);
+    if (rng() % 4 == 0) s[rng() % ns] = std::nextafter(s[0], 1.0f);
+    if (rng() % 4 == 0) t[rng() % nt] = std::nextafter(t[0], -1.0f);
+    const uint32_t layer = rng() % 4 == 0 ? 1 : 0;
+    float memoized[kGridMax * kGridMax][4], alone[kGridMax * kGridMax][4];
+    uint32_t memoMasks[kGridMax * kGridMax], aloneMasks[kGridMax * kGridMax];
+    sampleBlendedGrid(u, p, s, ns, t, nt, layer, memoized, memoMasks, &memo);
+    sampleBlendedGrid(u, p, s, ns, t, nt, layer, alone, aloneMasks);
+    for (int i = 0; i < ns * nt; ++i) {
+      ASSERT_TRUE(sameBits(memoized[i], alone[i])) << "trial " << trial << " point " << i;
+      ASSERT_EQ(memoMasks[i], aloneMasks[i]) << "trial " << trial << " point " << i;
+    }
+  }
+  EXPECT_GT(memo.hits, 100u);  // the memo was used, not only filled
+}
+
 TEST(SampleGrid, AFloatTextureGridIsItsPointLookups) {
   std::mt19937 rng(7);
   TextureData tex(testing::desc2D(Format::RGBA32F, 4, 4, 3));
