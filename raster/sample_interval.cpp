@@ -19,11 +19,13 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <vector>
 
 #include "raster/provenance.h"
 #include "raster/sample.h"
 #include "raster/sample_detail.h"
+#include "raster/simd_targets.h"
 #include "raster/tolerances.h"
 
 namespace tessera::sample_detail {
@@ -196,18 +198,12 @@ void intervalPass(const TexUnit& u, float s, float t, float r, bool array, const
                       std::fabs(double(t)) * tolerance::kInterpRel;
 
   const int channels = channelCount(d.format);
-  // Adds one alternative to its group, widened by FILTER_PRECISION where its filter rounds.
+  // FILTER_PRECISION's widening of one value; both are monotone (non-decreasing) in v.
+  auto widenLo = [](float v) { return std::max(0.0f, float(double(v) - tolerance::kFilterUnorm)); };
+  auto widenHi = [](float v) { return std::min(1.0f, float(double(v) + tolerance::kFilterUnorm)); };
+  // Adds a box to the group of (plan, layer, coordinate alternative).
   int lastGroup = -1;
-  auto addSample = [&](const Plan& p, uint32_t layer, int32_t a, int32_t b, uint32_t blended, const float v[4]) {
-    float l[4], h[4];
-    for (int c = 0; c < 4; ++c) {
-      l[c] = h[c] = v[c];
-      if (c < channels && (blended >> c & 1)) {
-        l[c] = std::max(0.0f, float(double(v[c]) - tolerance::kFilterUnorm));
-        h[c] = std::min(1.0f, float(double(v[c]) + tolerance::kFilterUnorm));
-      }
-    }
-    if (blended) classes |= kFilterPrecision;
+  auto addBox = [&](const Plan& p, uint32_t layer, int32_t a, int32_t b, const float l[4], const float h[4]) {
     GroupKey key{};
     key.w0 = p.lv[0].w, key.h0 = p.lv[0].h;
     key.w1 = p.levelCount == 2 ? p.lv[1].w : 0, key.h1 = p.levelCount == 2 ? p.lv[1].h : 0;
@@ -225,6 +221,19 @@ void intervalPass(const TexUnit& u, float s, float t, float r, bool array, const
     groups.push_back({key, {}});
     groups.back().box.init(l, h);
   };
+  // Adds one alternative to its group, widened by FILTER_PRECISION where its filter rounds.
+  auto addSample = [&](const Plan& p, uint32_t layer, int32_t a, int32_t b, uint32_t blended, const float v[4]) {
+    float l[4], h[4];
+    for (int c = 0; c < 4; ++c) {
+      l[c] = h[c] = v[c];
+      if (c < channels && (blended >> c & 1)) l[c] = widenLo(v[c]), h[c] = widenHi(v[c]);
+    }
+    if (blended) classes |= kFilterPrecision;
+    addBox(p, layer, a, b, l, h);
+  };
+  // The unorm filter's values are never NaN, so a group's box is a plain minimum and maximum, in any
+  // order; the LINEAR alternatives of one plan and layer all join one group.
+  const bool unorm = d.format == Format::RGBA8 || d.format == Format::R8;
 
   float nominal[4];
   {
@@ -263,8 +272,13 @@ void intervalPass(const TexUnit& u, float s, float t, float r, bool array, const
   thread_local GridMemo memo;        // level grids shared by this pass's plans
   memo.begin();
   for (int li = 0; li < nl; ++li) plans[li] = makePlan(u, lam[li]);
+  // The shortcuts below (skipped weights, shared level grids, a plan's LINEAR alternatives reduced at
+  // once) give the same groups and classes; the "reference" SIMD target runs without them, looking up
+  // every alternative with sampleBlended and adding it with addSample (tests/raster/
+  // test_provenance_shortcuts.cpp compares the two on every scene).
+  const bool shortcuts = simd::kernelsOn();
   bool interior[kMaxLam] = {};
-  if (d.format == Format::RGBA8 || d.format == Format::R8) markInteriorWeights(plans, nl, interior);
+  if (shortcuts && (d.format == Format::RGBA8 || d.format == Format::R8)) markInteriorWeights(plans, nl, interior);
   for (int pi = 0; pi < 2 * nl; ++pi) {
     const int li = pi >> 1;
     const bool alt = pi & 1;
@@ -283,7 +297,53 @@ void intervalPass(const TexUnit& u, float s, float t, float r, bool array, const
     for (uint32_t layer = layerLo; layer <= layerHi; ++layer) {
       float vs[kGridMax * kGridMax][4];
       uint32_t masks[kGridMax * kGridMax];
-      sampleBlendedGrid(u, p, sc, ns, tc, nt, layer, vs, masks, &memo);
+      if (shortcuts) {
+        sampleBlendedGrid(u, p, sc, ns, tc, nt, layer, vs, masks, &memo);
+      } else {
+        for (int a = 0; a < ns; ++a)
+          for (int b = 0; b < nt; ++b) masks[a * nt + b] = sampleBlended(u, p, sc[a], tc[b], layer, vs[a * nt + b]);
+      }
+      const bool nominalLayer = layer == layerOracle;
+      if (shortcuts && p.linear && unorm) {
+        // What adding every alternative with addSample gives, without NaNs: per channel, the least and
+        // greatest widened value among the alternatives blended there (the widening is monotone, so
+        // it is applied once to their extreme) and the least and greatest of the others.
+        constexpr float kInf = std::numeric_limits<float>::infinity();
+        float loB[4] = {kInf, kInf, kInf, kInf}, hiB[4] = {-kInf, -kInf, -kInf, -kInf};
+        float loP[4] = {kInf, kInf, kInf, kInf}, hiP[4] = {-kInf, -kInf, -kInf, -kInf};
+        uint32_t anyBlended = 0;
+        const int n = ns * nt;
+        for (int i = 0; i < n; ++i) {
+          anyBlended |= masks[i];
+          for (int c = 0; c < 4; ++c) {
+            const float v = vs[i][c];
+            if (masks[i] >> c & 1) {
+              loB[c] = std::min(loB[c], v), hiB[c] = std::max(hiB[c], v);
+            } else {
+              loP[c] = std::min(loP[c], v), hiP[c] = std::max(hiP[c], v);
+            }
+          }
+        }
+        float l[4], h[4];
+        for (int c = 0; c < 4; ++c) {
+          l[c] = hiB[c] < loB[c] ? loP[c] : std::min(loP[c], widenLo(loB[c]));
+          h[c] = hiB[c] < loB[c] ? hiP[c] : std::max(hiP[c], widenHi(hiB[c]));
+        }
+        if (anyBlended) classes |= kFilterPrecision;
+        addBox(p, layer, -1, -1, l, h);
+        if (!nominalLayer) continue;
+        // The classes of the per-alternative loop below: LOD_NEAR_SWITCH from the nominal coordinates
+        // of another lambda, SUBTEXEL_NEAR_HALF from other coordinates at the oracle's lambda.
+        const int nominalIndex = n - 1;  // (ns - 1, nt - 1)
+        if ((alt || lam[li] != lamOracle) && !sameValue(vs[nominalIndex], nominal)) classes |= kLodNearSwitch;
+        if (!alt && lam[li] == lamOracle)
+          for (int i = 0; i < nominalIndex; ++i)
+            if (!sameValue(vs[i], nominal)) {
+              classes |= kSubtexelNearHalf;
+              break;
+            }
+        continue;
+      }
       for (int a = 0; a < ns; ++a)
         for (int b = 0; b < nt; ++b) {
           const float* v = vs[a * nt + b];
@@ -292,7 +352,7 @@ void intervalPass(const TexUnit& u, float s, float t, float r, bool array, const
           // A class names the freedom that alone changes the value: the LOD with the nominal
           // coordinates and layer, or the coordinates with the oracle's LOD and layer. Combinations
           // only widen the interval.
-          const bool nominalCoords = a == ns - 1 && b == nt - 1, nominalLayer = layer == layerOracle;
+          const bool nominalCoords = a == ns - 1 && b == nt - 1;
           if ((alt || lam[li] != lamOracle) && nominalCoords && nominalLayer) classes |= kLodNearSwitch;
           if (!alt && lam[li] == lamOracle && !nominalCoords && nominalLayer) classes |= kSubtexelNearHalf;
         }

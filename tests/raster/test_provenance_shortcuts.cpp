@@ -1,0 +1,91 @@
+// Provenance mode's lookup shortcuts (raster/sample_interval.cpp: skipped trilinear weights, level
+// grids shared by a pass's plans, a plan's LINEAR alternatives reduced at once) must give exactly what
+// the "reference" SIMD target gives without them: every rendered texture's lower and upper images,
+// classes, flags, candidate lists and candidate depths, on every built-in scene.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "raster/cpu_backend.h"
+#include "raster/provenance.h"
+#include "raster/simd_targets.h"
+#include "tests/raster/render_helpers.h"
+#include "tools/scenes/scenes.h"
+
+namespace tessera::scenes {
+using tessera::testing::SimdTargetGuard;
+
+namespace {
+
+bool sameCandidate(const Candidate& a, const Candidate& b) {
+  return a.lo == b.lo && a.hi == b.hi && a.tags == b.tags && a.tagCount == b.tagCount && a.depth.lo == b.depth.lo &&
+         a.depth.hi == b.depth.hi && a.depth.sig == b.depth.sig && a.depth.epoch == b.depth.epoch;
+}
+
+bool sameDepth(const CandidateDepth& a, const CandidateDepth& b) {
+  return a.lo == b.lo && a.hi == b.hi && a.sig == b.sig && a.epoch == b.epoch;
+}
+
+// Every provenance record of texture `name` in a equals b's.
+void expectSameProvenance(const Provenance& a, const Provenance& b, const std::string& name) {
+  ASSERT_EQ(a.lo->levels, b.lo->levels) << name << ": lower images differ";
+  ASSERT_EQ(a.hi->levels, b.hi->levels) << name << ": upper images differ";
+  ASSERT_EQ(a.classes, b.classes) << name << ": classes differ";
+  ASSERT_EQ(a.flags, b.flags) << name << ": flags differ";
+  ASSERT_EQ(a.candidates.size(), b.candidates.size()) << name;
+  for (size_t l = 0; l < a.candidates.size(); ++l) {
+    ASSERT_EQ(a.candidates[l].size(), b.candidates[l].size()) << name << " level " << l;
+    for (size_t i = 0; i < a.candidates[l].size(); ++i) {
+      const auto &x = a.candidates[l][i], &y = b.candidates[l][i];
+      ASSERT_EQ(x.size(), y.size()) << name << " level " << l << " pixel " << i << ": candidate counts differ";
+      for (size_t k = 0; k < x.size(); ++k)
+        ASSERT_TRUE(sameCandidate(x[k], y[k])) << name << " level " << l << " pixel " << i << " candidate " << k;
+    }
+  }
+  ASSERT_EQ(a.depth.size(), b.depth.size()) << name;
+  for (size_t l = 0; l < a.depth.size(); ++l) {
+    ASSERT_EQ(a.depth[l].size(), b.depth[l].size()) << name << " level " << l;
+    for (size_t i = 0; i < a.depth[l].size(); ++i)
+      ASSERT_TRUE(sameDepth(a.depth[l][i], b.depth[l][i])) << name << " level " << l << " pixel " << i;
+  }
+}
+
+class ProvenanceShortcuts : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ProvenanceShortcuts, GiveTheReferenceTargetsIntervalsClassesAndCandidates) {
+  SimdTargetGuard guard;
+  const SceneInfo* info = find(GetParam());
+  const CommandList cl = build(info->name, info->width, info->height);
+  const RenderOptions options{2, true, {}, 8};  // provenance, judged against 8 sub-pixel bits
+  CpuBackend fast(options), reference(options);
+  simd::forceTarget("best");
+  fast.execute(cl, GetParam());
+  simd::forceTarget("reference");
+  reference.execute(cl, GetParam());
+  int compared = 0;
+  for (const Command& c : cl.commands()) {
+    const auto* ct = std::get_if<CreateTexture>(&c);
+    if (!ct) continue;
+    const TextureData *a = fast.texture(ct->id), *b = reference.texture(ct->id);
+    ASSERT_TRUE(a && b);
+    ASSERT_EQ(a->levels, b->levels) << "texture " << ct->id << ": values differ";
+    ASSERT_EQ(bool(a->prov), bool(b->prov)) << "texture " << ct->id;
+    if (!a->prov) continue;
+    expectSameProvenance(*a->prov, *b->prov, "texture " + std::to_string(ct->id));
+    ++compared;
+  }
+  EXPECT_GT(compared, 0) << "no rendered texture to compare";
+}
+
+INSTANTIATE_TEST_SUITE_P(AllScenes, ProvenanceShortcuts, ::testing::ValuesIn([] {
+                           std::vector<std::string> names;
+                           for (const auto& s : all()) names.emplace_back(s.name);
+                           return names;
+                         }()),
+                         [](const auto& param) { return param.param; });
+
+}  // namespace
+}  // namespace tessera::scenes
