@@ -54,25 +54,26 @@ struct FragInterval {
 // posTolPx: how far (pixels) GL's sample may sit from the oracle's on the triangle's plane.
 // withValue: the value run lies in the interval (false for a lookup candidate other than the oracle's,
 // whose box need not contain the oracle's value; its tolerance still comes from the value run).
-FragInterval fragInterval(const QuadOut (&o)[3], int a, int p, bool uintOut, double posTolPx, bool withValue = true) {
+FragInterval fragInterval(const QuadOut* const (&o)[3], int a, int p, bool uintOut, double posTolPx,
+                          bool withValue = true) {
   FragInterval f{};
   const int runs = withValue ? 3 : 2;
   for (int c = 0; c < 4; ++c) {
     if (uintOut) {
-      const uint32_t v0 = o[0].color[a][p].u[c], v1 = o[1].color[a][p].u[c], v2 = o[runs - 1].color[a][p].u[c];
+      const uint32_t v0 = o[0]->color[a][p].u[c], v1 = o[1]->color[a][p].u[c], v2 = o[runs - 1]->color[a][p].u[c];
       f.lo[c] = double(std::min({v0, v1, v2}));
       f.hi[c] = double(std::max({v0, v1, v2}));
       continue;
     }
     double v[3];
     for (int r = 0; r < 3; ++r) {
-      const float x = o[r].color[a][p].f[c];
+      const float x = o[r]->color[a][p].f[c];
       v[r] = std::isnan(x) ? 0.0 : double(x);
     }
     f.lo[c] = std::min({v[0], v[1], v[runs - 1]});
     f.hi[c] = std::max({v[0], v[1], v[runs - 1]});
     // Output rounding: the value run's quad gradient times the position tolerance, plus float error.
-    const QuadOut& val = o[2];
+    const QuadOut& val = *o[2];
     const double g = std::fabs(double(val.color[a][1].f[c]) - val.color[a][0].f[c]) +
                      std::fabs(double(val.color[a][2].f[c]) - val.color[a][0].f[c]);
     f.tol[c] = (std::isfinite(g) ? g * posTolPx : 0.0) + std::fabs(v[2]) * tolerance::kInterpRel;
@@ -377,34 +378,37 @@ void updatePixel(TextureData& tex, const TargetView& tv, uint32_t layer, int32_t
   uint16_t& cls = pv.classes[tv.level][idx];
   std::vector<Candidate>& stored = pv.candidates[tv.level][idx];
   const uint16_t dstCls = cls;
-  const FragInterval f = fragInterval(o, a, p, !k.unorm && !k.isFloat, u.posTolPx);
+  const QuadOut* const runs[3] = {&o[0], &o[1], &o[2]};
+  const FragInterval f = fragInterval(runs, a, p, !k.unorm && !k.isFloat, u.posTolPx);
   // The fragment's candidates: one per candidate of its forking lookup, else its one interval.
   FragInterval frags[kMaxLookupCandidates];
   int nf = 0;
   for (int li = 0; li < u.lookupCount; ++li) {
-    const QuadOut lk[3] = {u.lookupLo[li], u.lookupHi[li], o[2]};
+    const QuadOut* const lk[3] = {&u.lookupLo[li], &u.lookupHi[li], &o[2]};
     frags[nf++] = fragInterval(lk, a, p, !k.unorm && !k.isFloat, u.posTolPx, li == 0);
   }
   if (nf == 0) frags[nf++] = f;
   if (nf > 1) pv.flags[tv.level][idx] |= kLookupForked;
   if (u.lookupFallback) pv.flags[tv.level][idx] |= kLookupFallback;
 
-  // The set before this fragment: the stored candidates, or the one box of the images.
-  std::vector<Candidate> before;
+  // The set before this fragment: the stored candidates, or the one box of the images. Scratch
+  // vectors of the thread: a fragment per pixel would otherwise allocate two.
+  thread_local std::vector<Candidate> before, after;
+  before.clear();
+  after.clear();
   if (stored.empty()) {
     Candidate c;
     for (int ch = 0; ch < k.n; ++ch) c.lo[ch] = loadChannel(k, lo, ch), c.hi[ch] = loadChannel(k, hi, ch);
     c.depth = pv.depth[tv.level][idx];
     before.push_back(c);
   } else {
-    before = stored;
+    before.assign(stored.begin(), stored.end());
   }
   for (Candidate& c : before) c.depth = depthOf(c.depth, u);
   double oldVal[4] = {};
   for (int ch = 0; ch < k.n; ++ch) oldVal[ch] = loadChannel(k, val, ch);
 
   uint16_t classes = u.classes;
-  std::vector<Candidate> after;
   // The candidate that follows the oracle's own chain of outcomes: it must contain the oracle's value.
   int oracleChain = -1;
   for (size_t ci = 0; ci < before.size(); ++ci) {
@@ -475,7 +479,7 @@ void updatePixel(TextureData& tex, const TargetView& tv, uint32_t layer, int32_t
   } else if (after.size() == 1 && after[0].tagCount == 0) {
     after.clear();
   }
-  stored = std::move(after);
+  stored.assign(after.begin(), after.end());
   for (int ch = 0; ch < k.n; ++ch) storeChannel(k, lo, ch, hull.lo[ch], false), storeChannel(k, hi, ch, hull.hi[ch], true);
 
   // Exact when every candidate is the oracle's value (edge tags may remain for later fragments).
