@@ -753,10 +753,12 @@ void CpuBackend::execute(const CommandList& list, std::string_view frameName) {
   const double runMs = std::chrono::duration<double, std::milli>(end - validated).count();
   st.frameMs = std::max(0.0, runMs - st.resourcesMs);
   st.perStage = impl_->options.stageTimes;
-  st.hizBlocksSkipped = st.hizFragmentsSkipped = 0;
+  st.hizBlocksSkipped = st.hizFragmentsSkipped = st.provPlansSkipped = st.provGridsShared = 0;
   for (const RastScratch& s : impl_->scratch) {
     st.hizBlocksSkipped += s.hizBlocksSkipped;
     st.hizFragmentsSkipped += s.hizFragmentsSkipped;
+    st.provPlansSkipped += s.provPlansSkipped;
+    st.provGridsShared += s.provGridsShared;
   }
   if (st.perStage) {
     // Ticks to milliseconds with the run's own wall time as the reference clock.

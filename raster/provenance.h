@@ -134,6 +134,11 @@ struct ShadeProvenance {
   std::array<uint8_t, 4> forkingLookups{};   // lookups with more than one candidate
   std::array<uint8_t, 4> lookupCandidates{};  // the largest such candidate count
   std::array<bool, 4> lookupFallback{};       // a lookup's candidates collapsed to their hull
+  // Work the lookup shortcuts skipped on this thread (sample_interval.cpp; StageTimes, not GL
+  // counters): lambda alternatives not looked up because their plan lies inside a trilinear level
+  // pair's weights, and level grids taken from a pass's memo. Kept across quads; the rasterizer moves
+  // them into its per-thread record after each tile.
+  uint64_t plansSkipped = 0, gridsShared = 0;
   void resetPixels() {
     classes = {};
     dontCare = {};

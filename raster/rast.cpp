@@ -825,6 +825,11 @@ void rasterizeTile(const Scene& scene, size_t tileIndex, RastScratch& scratch, P
   }
   endPlanCache();
   unbindSampleKernels();
+  if (scene.provenance) {
+    ShadeProvenance& sp = shadeProvenance();
+    scratch.provPlansSkipped += sp.plansSkipped, scratch.provGridsShared += sp.gridsShared;
+    sp.plansSkipped = sp.gridsShared = 0;
+  }
   if (scene.lod) setLodQuadLog(nullptr);  // vertex stages on this thread must not append to it
   if (scene.timeStages) {
     setSampleTicks(nullptr);

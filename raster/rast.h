@@ -112,6 +112,8 @@ struct RastScratch {
   // Work the fast path skipped, for benchmarks and tests (StageTimes; not a GL counter): blocks and
   // fragments found hidden by the hierarchical Z without being walked.
   uint64_t hizBlocksSkipped = 0, hizFragmentsSkipped = 0;
+  // Provenance mode's lookup shortcuts, moved here from the thread's ShadeProvenance after each tile.
+  uint64_t provPlansSkipped = 0, provGridsShared = 0;
   DrawConsts drawConsts;  // of the last draw walked in this tile (reset per tile)
 };
 

@@ -271,6 +271,7 @@ void intervalPass(const TexUnit& u, float s, float t, float r, bool array, const
   thread_local Plan plans[kMaxLam];  // each lambda's plan with the oracle's switch point
   thread_local GridMemo memo;        // level grids shared by this pass's plans
   memo.begin();
+  const uint64_t memoHits = memo.hits;
   for (int li = 0; li < nl; ++li) plans[li] = makePlan(u, lam[li]);
   // The shortcuts below (skipped weights, shared level grids, a plan's LINEAR alternatives reduced at
   // once) give the same groups and classes; the "reference" SIMD target runs without them, looking up
@@ -283,7 +284,10 @@ void intervalPass(const TexUnit& u, float s, float t, float r, bool array, const
     const int li = pi >> 1;
     const bool alt = pi & 1;
     if (alt && !(halfSwitch && lam[li] > 0 && lam[li] <= 128)) continue;
-    if (!alt && interior[li]) continue;
+    if (!alt && interior[li]) {
+      ++shadeProvenance().plansSkipped;
+      continue;
+    }
     const Plan p = alt ? makePlan(u, lam[li], 128) : plans[li];
     if (std::any_of(seen, seen + nSeen, [&](const Plan& q) { return samePlan(p, q); })) continue;
     seen[nSeen++] = p;
@@ -358,6 +362,7 @@ void intervalPass(const TexUnit& u, float s, float t, float r, bool array, const
         }
     }
   }
+  shadeProvenance().gridsShared += memo.hits - memoHits;
 }
 
 // The candidates of one pixel's lookup from its lower-image and upper-image passes (the same groups

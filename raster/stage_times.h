@@ -38,6 +38,9 @@ struct StageTimes {
   // GL does): 8x8 blocks walked by no triangle because the hierarchical Z found all their covered
   // fragments failing the depth test, and those fragments.
   uint64_t hizBlocksSkipped = 0, hizFragmentsSkipped = 0;
+  // Provenance mode's lookup shortcuts (raster/sample_interval.cpp): lambda alternatives not looked up
+  // (inside a trilinear level pair's weights), and level grids shared by a lookup's plans.
+  uint64_t provPlansSkipped = 0, provGridsShared = 0;
 };
 
 namespace detail {

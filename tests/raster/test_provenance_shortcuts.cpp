@@ -78,6 +78,14 @@ TEST_P(ProvenanceShortcuts, GiveTheReferenceTargetsIntervalsClassesAndCandidates
     ++compared;
   }
   EXPECT_GT(compared, 0) << "no rendered texture to compare";
+  // The reference target takes no shortcut; the best one takes them where the scene has the lookups
+  // for them (city_block: trilinear minification, whose level pairs share grids and skip weights).
+  EXPECT_EQ(reference.stageTimes().provPlansSkipped, 0u);
+  EXPECT_EQ(reference.stageTimes().provGridsShared, 0u);
+  if (GetParam() == "city_block") {
+    EXPECT_GT(fast.stageTimes().provPlansSkipped, 10000u);
+    EXPECT_GT(fast.stageTimes().provGridsShared, 100000u);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(AllScenes, ProvenanceShortcuts, ::testing::ValuesIn([] {

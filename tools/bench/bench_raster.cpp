@@ -32,7 +32,7 @@ static bool g_stages = false;
 static bool g_provenance = false;
 
 static void renderList(benchmark::State& state, const std::string& name, const CommandList& list) {
-  uint64_t fragments = 0, hizBlocks = 0, hizFragments = 0;
+  uint64_t fragments = 0, hizBlocks = 0, hizFragments = 0, plansSkipped = 0, gridsShared = 0;
   double constructMs = 0, validateMs = 0, resourcesMs = 0;
   StageTimes sum;
   RenderOptions o{int(state.range(0))};
@@ -51,6 +51,7 @@ static void renderList(benchmark::State& state, const std::string& name, const C
     sum.rastMs += st.rastMs, sum.shadeMs += st.shadeMs, sum.sampleMs += st.sampleMs, sum.fragopsMs += st.fragopsMs;
     fragments += b.stats().fragments_shaded;
     hizBlocks += st.hizBlocksSkipped, hizFragments += st.hizFragmentsSkipped;
+    plansSkipped += st.provPlansSkipped, gridsShared += st.provGridsShared;
     benchmark::DoNotOptimize(b.stats().pixels_written);
   }
   state.SetItemsProcessed(int64_t(fragments));
@@ -61,6 +62,12 @@ static void renderList(benchmark::State& state, const std::string& name, const C
   // Work the hierarchical Z skipped per frame (raster/rast.cpp): blocks and fragments never walked.
   state.counters["hiz_blocks"] = avg(double(hizBlocks));
   state.counters["hiz_fragments"] = avg(double(hizFragments));
+  if (g_provenance) {
+    // Provenance mode's lookup shortcuts per frame (raster/sample_interval.cpp): lambda alternatives
+    // not looked up, and level grids shared by a lookup's plans.
+    state.counters["prov_plans_skipped"] = avg(double(plansSkipped));
+    state.counters["prov_grids_shared"] = avg(double(gridsShared));
+  }
   if (g_stages) {
     state.counters["stage_vertex_ms"] = avg(sum.vertexMs);
     state.counters["stage_clip_ms"] = avg(sum.clipMs);
