@@ -244,7 +244,7 @@ class TriangleRasterizer {
         size_t((by - tileY0_) / kBlockSize) * RastScratch::kBlocksPerRow + size_t((bx - tileX0_) / kBlockSize);
     if (hizFloor_ == hizFloor_ && occluded(b, bx, by)) {
       // Every covered pixel fails the early depth test, as the walk would have counted them.
-      const uint64_t n = uint64_t(std::popcount(mask));
+      const uint64_t n = popcount64(mask);
       stats_.fragments_depth_failed += n;
       s_.hizBlocksSkipped += 1;
       s_.hizFragmentsSkipped += n;
@@ -410,8 +410,8 @@ class TriangleRasterizer {
         if (bits >> x & 1) row[x] = id_;
     }
     // The counters of its quads: those with a covered pixel, and their covered pixels.
-    const uint64_t quads = uint64_t(std::popcount((mask | mask >> 1 | mask >> 8 | mask >> 9) & 0x0055005500550055u));
-    const uint64_t n = uint64_t(std::popcount(mask));
+    const uint64_t quads = popcount64((mask | mask >> 1 | mask >> 8 | mask >> 9) & 0x0055005500550055u);
+    const uint64_t n = popcount64(mask);
     stats_.quads_shaded += quads;
     stats_.fragments_shaded += n;
     stats_.helper_invocations += 4 * quads - n;

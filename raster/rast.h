@@ -191,6 +191,15 @@ inline uint64_t quadPixels(uint32_t mask) {
   return kCount[mask & 0xf];
 }
 
+// The number of set bits of a 64-bit mask (an 8x8 block's coverage), inline: std::popcount is a call
+// to libgcc's __popcountdi2 on baseline x86-64, which cost 3 % of a flat fill's visibility walk.
+inline uint64_t popcount64(uint64_t x) {
+  x -= (x >> 1) & 0x5555555555555555u;
+  x = (x & 0x3333333333333333u) + ((x >> 2) & 0x3333333333333333u);
+  x = (x + (x >> 4)) & 0x0f0f0f0f0f0f0f0fu;
+  return (x * 0x0101010101010101u) >> 56;
+}
+
 inline float loadDepth(const TextureData& d, uint32_t level, uint32_t layer, int32_t x, int32_t y) {
   float z;
   std::memcpy(&z, d.texel(level, layer, uint32_t(x), uint32_t(y)), sizeof z);
