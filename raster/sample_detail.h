@@ -3,8 +3,9 @@
 // Implements: what the three files of the sampler share: raster/sample.cpp (exact lookups: level
 // planning, wrap, filtering, layer selection, buffer fetches), raster/sample_lod.cpp (lambda:
 // GL 4.6 §8.14.1) and raster/sample_interval.cpp (provenance mode: the legal [lo, hi] bounds of a
-// lookup). That is the per-quad lookup plan, the integer rounding helpers, and the entry points each
-// file offers the others.
+// lookup). That is the per-quad lookup plan, the integer rounding helpers, the grid lookups that
+// provenance mode's coordinate alternatives use (sampleBlendedGrid, with its memo of level grids),
+// and the entry points each file offers the others.
 // Does not implement: the per-pixel filter (sample.cpp keeps its per-format templates local, so the
 // per-pixel path stays inside one translation unit) or the tolerances (raster/tolerances.h).
 #pragma once

@@ -11,10 +11,13 @@
 // - array layer: r + 1/2 near an integer (tolerance::kLayer);
 // - unorm filtering precision: +-1 LSB on an alternative that blends differing texels with a weight not
 //   in {0, 1} (tolerance::kFilterUnorm, the mask of sampleBlended).
-// Each alternative is looked up with the exact path's own plan and per-pixel filter (makePlan, sampleN).
-// The alternatives are grouped by their discrete choice (level plan incl. the c = 1/2 switch, layer,
-// NEAREST texel), giving each pixel's lookup a short list of candidate boxes rather than one hull
-// (docs/crosscheck.md, "Lookup candidates"); the oracle's own lookup is in the first.
+// Each alternative is looked up with the exact path's own plan and filter (makePlan; sampleBlended, or
+// sampleBlendedGrid for a plan's grid of coordinate alternatives: the same bits). The alternatives are
+// grouped by their discrete choice (level plan incl. the c = 1/2 switch, layer, NEAREST texel), giving
+// each pixel's lookup a short list of candidate boxes rather than one hull (docs/crosscheck.md,
+// "Lookup candidates"); the oracle's own lookup is in the first. Three exact shortcuts (skipped
+// trilinear weights, shared level grids, one reduction per LINEAR plan) are off under the "reference"
+// SIMD target (intervalPass).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
