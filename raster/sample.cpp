@@ -223,6 +223,10 @@ inline float loadF32(const uint8_t* p) {
   return v;
 }
 
+// An unorm lookup's value from its exact sum (total weight 255 x 2^24): the one conversion to float,
+// acc / (255 * 2^24) as a multiply that gives the division's float (raster/round.h says why).
+inline float unormFromSum(uint32_t acc) { return float(double(acc) * kUnormReciprocal); }
+
 // Channel c of a texel in the accumulator domain (a float is exact in double).
 template <Format F>
 inline Acc<F> channel(const uint8_t* texel, int c) {
@@ -390,9 +394,7 @@ inline void samplePlanned(const Plan& p, float s, float t, uint32_t layer, float
   if (p.levelCount == 2) accumulateLevel<F, kBorder, kLog>(p, p.lv[1], s, t, layer, p.levelWeight[1], acc, log);
   for (int c = 0; c < C; ++c) {
     if constexpr (Fmt<F>::kUnorm) {
-      // The one conversion to float: acc / (255 * 2^24), as a multiply that gives the division's
-      // float (raster/round.h says why).
-      out[c] = float(double(acc[c]) * kUnormReciprocal);
+      out[c] = unormFromSum(acc[c]);  // the one conversion to float
     } else {
       out[c] = float(acc[c] * (1.0 / kTotalWeight));  // exact scaling, then one rounding
     }
@@ -645,28 +647,17 @@ void gridUnorm(const Plan& p, const float* s, int ns, const float* t, int nt, ui
   if (layer > p.lastLayer) layer = p.lastLayer;  // as samplePlanned
   LevelGrid local[2];
   const LevelGrid& g0 = levelGrid<F>(p, p.lv[0], layer, s, ns, t, nt, memo, local[0]);
-  const int n = ns * nt;
-  if (p.levelCount == 1) {
-    const uint32_t w0 = p.levelWeight[0];
-    for (int i = 0; i < n; ++i) {
-      uint32_t m = 0;
-      for (int c = 0; c < C; ++c) {
-        out[i][c] = float(double(w0 * g0.sum[i][c]) * kUnormReciprocal);
-        if (g0.fractional[i] && g0.lo[i][c] != g0.hi[i][c]) m |= 1u << c;
-      }
-      for (int c = C; c < 4; ++c) out[i][c] = c == 3 ? 1.0f : 0.0f;
-      mask[i] = m;
-    }
-    return;
-  }
-  // makePlan keeps a second level only with weight in (0, 1): every point is fractional.
-  const LevelGrid& g1 = levelGrid<F>(p, p.lv[1], layer, s, ns, t, nt, memo, local[1], &g0);
+  // makePlan keeps a second level only with weight in (0, 1): with one, every point is fractional.
+  const LevelGrid* g1 = p.levelCount == 2 ? &levelGrid<F>(p, p.lv[1], layer, s, ns, t, nt, memo, local[1], &g0) : nullptr;
   const uint32_t w0 = p.levelWeight[0], w1 = p.levelWeight[1];
-  for (int i = 0; i < n; ++i) {
+  for (int i = 0; i < ns * nt; ++i) {
     uint32_t m = 0;
     for (int c = 0; c < C; ++c) {
-      out[i][c] = float(double(w0 * g0.sum[i][c] + w1 * g1.sum[i][c]) * kUnormReciprocal);
-      if (std::min(g0.lo[i][c], g1.lo[i][c]) != std::max(g0.hi[i][c], g1.hi[i][c])) m |= 1u << c;
+      uint32_t acc = w0 * g0.sum[i][c];
+      uint8_t lo = g0.lo[i][c], hi = g0.hi[i][c];
+      if (g1) acc += w1 * g1->sum[i][c], lo = std::min(lo, g1->lo[i][c]), hi = std::max(hi, g1->hi[i][c]);
+      out[i][c] = unormFromSum(acc);
+      if ((g1 || g0.fractional[i]) && lo != hi) m |= 1u << c;
     }
     for (int c = C; c < 4; ++c) out[i][c] = c == 3 ? 1.0f : 0.0f;
     mask[i] = m;
