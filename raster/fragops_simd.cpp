@@ -14,7 +14,10 @@ namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
 void Unorm8Quad(const float* in, uint8_t* out) {
-  const hn::CappedTag<double, 4> d;  // one lane on the scalar target, two vectors on 128-bit ones
+  // Full vectors (16 values are 2 of AVX-512, 4 of AVX2, 8 of SSE4, 16 scalar steps): the channels are
+  // independent, and each lane's steps are the scalar toUnorm8's.
+  const hn::ScalableTag<double> d;
+  static_assert(16 % HWY_LANES(double) == 0, "a quad's 16 values are whole vectors");
   const hn::Rebind<float, decltype(d)> df;
   const hn::Rebind<int32_t, decltype(d)> di;
   const hn::Rebind<uint8_t, decltype(d)> du8;

@@ -460,18 +460,24 @@ class TriangleRasterizer {
     // The block's quads go into one batch (batches are only a grouping of program calls).
     if (count_ + np > RastScratch::kBatch) flush();
     QuadPixels& px = s_.px;
-    // Owned: a program that does not read gl_FragCoord.z never sees Quad::z, and nothing else reads it
-    // there (the depth test and writes were Visibility's).
-    if (walk_ != Walk::Owned || ds_.program->readsFragDepth()) s_.quadDepths(px, 4 * np, plane_, s_.z);
-    if constexpr (walk_ == Walk::Visibility) return recordVisible(np);
+    // Quad::z is read by the early depth test and the depth writes (Visibility's in a visibility run,
+    // which walks a block without a depth test through visibleBlock instead), and by a program that
+    // reads gl_FragCoord.z; nothing else reads it (the LOD probe and a program writing gl_FragDepth
+    // take quad(), provenance mode its own walk). Without those its interpolation is skipped (a third
+    // of a one-pixel triangle's interpolation and conversion work), and the quads' z stays whatever
+    // an earlier batch left: never read.
     const bool depthTest = ds_.depth.test && scene_.target.depth;
+    const bool needDepths = walk_ == Walk::Visibility || (walk_ == Walk::Immediate && depthTest) ||
+                            ds_.program->readsFragDepth();
+    if (needDepths) s_.quadDepths(px, 4 * np, plane_, s_.z);
+    if constexpr (walk_ == Walk::Visibility) return recordVisible(np);
     size_t kept = 0;
     for (size_t j = 0; j < np; ++j) {
       const size_t n = count_ + kept;
       Quad& q = s_.quads[n];
       const RastScratch::PendingQuad& pq = s_.pending[j];
       q.x = pq.x, q.y = pq.y, q.coverage = pq.coverage;
-      std::memcpy(q.z, s_.z + 4 * j, sizeof q.z);
+      if (needDepths) std::memcpy(q.z, s_.z + 4 * j, sizeof q.z);
       uint8_t live = pq.coverage;
       if (depthTest && walk_ != Walk::Owned) {
         live &= depthPassMask(q);
@@ -642,7 +648,10 @@ class TriangleRasterizer {
   const bool sourceOverRgba8_;  // source-over blending, and every written attachment is RGBA8 or absent
   const bool gathered_;  // blocks' quads go through the interpolation kernels (runGathered)
   const Plane depth_;
-  InterpolationPlane plane_{};
+  // Not value-initialised: zeroing it (with the rest of the object, a `rep stos` of about 1 KB per
+  // triangle) was 15 % of a one-pixel triangle's walk. The constructor sets what the kernels read (the
+  // varyings up to the draw's count) whenever gathered_ is set, and nothing reads it otherwise.
+  InterpolationPlane plane_;
   size_t pending_ = 0;  // quads gathered from the block being walked
   int32_t xLast_ = 0, yLast_ = 0;  // the tile's last column and row (inside the target)
   BlockEdges edges_;  // the coverage kernel's input (raster/coverage_simd.h)

@@ -33,9 +33,12 @@ inline int64_t floorDiv(int64_t a, int64_t b) {
 
 // Bins a snapped triangle given window vertices in submission order.
 // `internal` flags the edges (w0 w1, w1 w2, w2 w0) that are fan diagonals of a clipped polygon.
-void binTriangle(WindowVertex w0, WindowVertex w1, WindowVertex w2, const VertexOut& provoking, uint32_t primitiveId,
-                 uint32_t layer, bool clipped, const SetupParams& params, SetupSink& sink, bool& binned,
-                 std::array<bool, 3> internal = {false, false, false}) {
+// The vertices are taken by reference: copied by value, each 56-byte WindowVertex was read back as
+// 16-byte words just after toWindow wrote it field by field, a failed store forwarding per word (a
+// fifth of setupTriangle's time).
+void binTriangle(const WindowVertex& w0, const WindowVertex& w1, const WindowVertex& w2, const VertexOut& provoking,
+                 uint32_t primitiveId, uint32_t layer, bool clipped, const SetupParams& params, SetupSink& sink,
+                 bool& binned, std::array<bool, 3> internal = {false, false, false}) {
   PipelineStats& stats = sink.stats;
   // Doubled signed area from the snapped coordinates (GL 4.6 §14.6.1, eq. 14.8 in window space).
   const int64_t area2 = (w1.x - w0.x) * (w2.y - w0.y) - (w2.x - w0.x) * (w1.y - w0.y);
@@ -46,12 +49,13 @@ void binTriangle(WindowVertex w0, WindowVertex w1, WindowVertex w2, const Vertex
   if (params.raster.cull == CullMode::Front && front) return;
   // Edge opposite vertex i in submission order: 0 = w1 w2, 1 = w2 w0, 2 = w0 w1.
   bool internalOpp[3] = {internal[1], internal[2], internal[0]};
-  if (!ccw) std::swap(w1, w2), std::swap(internalOpp[1], internalOpp[2]);  // edge functions below assume counter-clockwise order
+  // The edge functions below assume counter-clockwise order.
+  const WindowVertex* wv[3] = {&w0, ccw ? &w1 : &w2, ccw ? &w2 : &w1};
+  if (!ccw) std::swap(internalOpp[1], internalOpp[2]);
 
-  // Built in place at the end of the arena (a TriSetup is ~300 bytes); removed again if no tile takes it.
-  TriSetup& t = sink.tris.emplace_back();
+  // Built in place at the end of the arena (a TriSetup is 472 bytes); removed again if no tile takes it.
+  TriSetup& t = sink.tris.emplace_back(TriSetup::NoInit{});
   t.area2 = ccw ? area2 : -area2;
-  const WindowVertex* wv[3] = {&w0, &w1, &w2};
   for (int i = 0; i < 3; ++i) {
     // Edge opposite vertex i runs from vertex i+1 to vertex i+2.
     const WindowVertex& p = *wv[(i + 1) % 3];
@@ -81,8 +85,12 @@ void binTriangle(WindowVertex w0, WindowVertex w1, WindowVertex w2, const Vertex
   // Provenance mode also visits pixels up to one pixel outside: they may be covered under another
   // legal snapping (EDGE_TIE), and further out as far as GL may put a vertex made by clipping
   // (CLIP_EDGE). Coverage itself stays exact; only the visited area grows.
-  const double clipPx = std::max({w0.errSub, w1.errSub, w2.errSub}) / double(kSubpixelOne);
-  const int64_t clipGrow = clipPx < 65536.0 ? int64_t(std::ceil(clipPx)) : 65536;
+  // (Only there: std::ceil is a libm call on baseline x86-64, once per triangle.)
+  int64_t clipGrow = 0;
+  if (params.provenance) {
+    const double clipPx = std::max({w0.errSub, w1.errSub, w2.errSub}) / double(kSubpixelOne);
+    clipGrow = clipPx < 65536.0 ? int64_t(std::ceil(clipPx)) : 65536;
+  }
   const int64_t grow = params.provenance ? 1 + clipGrow : 0;
   const int64_t x0 = std::max<int64_t>(floorDiv(minx - kSubpixelHalf + kSubpixelOne - 1, kSubpixelOne) - grow, r.x);
   const int64_t x1 = std::min<int64_t>(floorDiv(maxx - kSubpixelHalf, kSubpixelOne) + grow, int64_t(r.x) + r.w - 1);
@@ -100,6 +108,7 @@ void binTriangle(WindowVertex w0, WindowVertex w1, WindowVertex w2, const Vertex
   t.drawState = params.stateIndex;
   t.frontFacing = front;
   t.clipped = clipped;
+  t.depthSig = 0;  // provenance mode sets it after setup (cpu_backend.cpp)
 
   const size_t tilesBefore = sink.tiles.size();
   bool any = false;
