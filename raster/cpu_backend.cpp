@@ -473,6 +473,8 @@ struct CpuBackend::Impl {
       for (size_t b = 0; b < pending[d].shadeCount; b += kVertexChunk)
         vertexChunks.push_back({d, b, std::min(pending[d].shadeCount, b + kVertexChunk)});
     const bool timing = scene.timeStages;
+    // Provenance mode's depth signatures (setupPending) read the triangles' VertexIns.
+    const bool keepInputs = options.provenance;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, vertexChunks.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
       const uint64_t t0 = timing ? stageClock() : 0;
       for (size_t c = r.begin(); c != r.end(); ++c) {
@@ -483,8 +485,22 @@ struct CpuBackend::Impl {
         VertexIn* const in = pendingIn.data.get() + p.vtx + vc.begin;
         VertexOut* const out = pendingOut.data.get() + p.vtx + vc.begin;
         const size_t n = vc.end - vc.begin;
-        for (size_t i = 0; i < n; ++i)
-          fetchVertex(*p.vertexBuffer, p.layout, p.dense ? p.lo + uint32_t(vc.begin + i) : idx[vc.begin + i], in[i]);
+        const auto index = [&](size_t i) { return p.dense ? p.lo + uint32_t(vc.begin + i) : idx[vc.begin + i]; };
+        if (!keepInputs) {
+          // Only the outputs are read later: the inputs go through a group buffer that stays in L1
+          // instead of the slice's array (6 MB of VertexIn written and evicted per slice of a setup-
+          // bound draw). The same values are shaded; only where their VertexIns live differs.
+          constexpr size_t kGroup = 64;
+          VertexIn group[kGroup];
+          for (size_t g = 0; g < n; g += kGroup) {
+            const size_t m = std::min(kGroup, n - g);
+            for (size_t i = 0; i < m; ++i) fetchVertex(*p.vertexBuffer, p.layout, index(g + i), group[i]);
+            std::memset(static_cast<void*>(out + g), 0, m * sizeof(VertexOut));
+            ds.program->shadeVertices(std::span<const VertexIn>(group, m), std::span<VertexOut>(out + g, m), ds.ctx);
+          }
+          continue;
+        }
+        for (size_t i = 0; i < n; ++i) fetchVertex(*p.vertexBuffer, p.layout, index(i), in[i]);
         // One fill of the chunk: a fill per 128-byte VertexOut compiled to a `rep stos` each, whose
         // start-up cost made it over half of the vertex stage (city_block).
         std::memset(static_cast<void*>(out), 0, n * sizeof(VertexOut));
