@@ -171,7 +171,7 @@ struct CpuBackend::Impl {
     uint32_t lo = 0;          // dense: the lowest index, vertex i of the draw is at lo + i
     size_t idx = 0, vtx = 0;  // offsets into pendingIdx and pendingIn / pendingOut
     size_t shadeCount = 0;    // vertices to shade: lo .. lo + shadeCount - 1 (dense) or every index
-    // What fetchVertex reads, as the draw saw it: the bound vertex buffer and layout may change before
+    // What fetchGroup reads, as the draw saw it: the bound vertex buffer and layout may change before
     // the vertices are shaded; the buffer's bytes cannot (an upload flushes first).
     const BufferData* vertexBuffer = nullptr;
     VertexLayout layout;
@@ -370,26 +370,47 @@ struct CpuBackend::Impl {
     return sigFinish(sigMix(h, layer));
   }
 
-  static void fetchVertex(const BufferData& vb, const VertexLayout& layout, uint32_t index, VertexIn& in) {
-    for (int a = 0; a < kMaxAttribs; ++a) {
-      Vec4& v = in.attr[a];
-      v = {0.0f, 0.0f, 0.0f, 1.0f};  // GL's default for missing components
-    }
+  // Fetches the n vertices of a group whose indices are in in[i].vertexId (GL 4.6 §10.3: components
+  // the layout leaves out read as (0, 0, 0, 1)). Attribute by attribute, each over the whole group
+  // with its component count and type fixed: vertex by vertex, the branches on both were mispredicted
+  // where a layout's attributes differ in them (a third of a setup-bound frame's vertex stage).
+  // Attributes in the layout's order, so where two name one location the later one is what a vertex
+  // keeps.
+  static void fetchGroup(const BufferData& vb, const VertexLayout& layout, VertexIn* in, size_t n) {
+    for (size_t i = 0; i < n; ++i)
+      for (Vec4& v : in[i].attr) v = {0.0f, 0.0f, 0.0f, 1.0f};
     for (const VertexAttrib& at : layout.attribs) {
       if (at.components == 0 || at.location >= kMaxAttribs) continue;
-      const uint8_t* src = vb.bytes.data() + uint64_t(index) * layout.stride + at.offset;
-      Vec4& v = in.attr[at.location];
-      for (int k = 0; k < at.components; ++k) {
-        if (at.type == AttribType::F32) {
-          std::memcpy(&v[size_t(k)], src + 4 * k, 4);
-        } else {
+      const uint8_t* const src = vb.bytes.data() + at.offset;
+      const bool u32 = at.type != AttribType::F32;
+      switch (at.components) {
+        case 1: u32 ? fetchAttrib<1, true>(src, layout.stride, at.location, in, n)
+                    : fetchAttrib<1, false>(src, layout.stride, at.location, in, n); break;
+        case 2: u32 ? fetchAttrib<2, true>(src, layout.stride, at.location, in, n)
+                    : fetchAttrib<2, false>(src, layout.stride, at.location, in, n); break;
+        case 3: u32 ? fetchAttrib<3, true>(src, layout.stride, at.location, in, n)
+                    : fetchAttrib<3, false>(src, layout.stride, at.location, in, n); break;
+        default: u32 ? fetchAttrib<4, true>(src, layout.stride, at.location, in, n)
+                     : fetchAttrib<4, false>(src, layout.stride, at.location, in, n); break;
+      }
+    }
+  }
+
+  template <int components, bool u32>
+  static void fetchAttrib(const uint8_t* src, uint64_t stride, uint8_t location, VertexIn* in, size_t n) {
+    for (size_t i = 0; i < n; ++i) {
+      const uint8_t* const s = src + uint64_t(in[i].vertexId) * stride;
+      Vec4& v = in[i].attr[location];
+      for (int k = 0; k < components; ++k) {
+        if constexpr (u32) {
           uint32_t u;
-          std::memcpy(&u, src + 4 * k, 4);
+          std::memcpy(&u, s + 4 * k, 4);
           v[size_t(k)] = float(u);  // exact: validation keeps U32 attributes below 2^24
+        } else {
+          std::memcpy(&v[size_t(k)], s + 4 * k, 4);
         }
       }
     }
-    in.vertexId = index;
   }
 
   uint32_t readIndex(uint32_t i) const {
@@ -445,7 +466,7 @@ struct CpuBackend::Impl {
       pd.vertexBuffer = buffers[vertexBuffer].get();
       pd.layout = layout;
       pd.segment = scene.segment;
-      // Filled by shadePending: fetchVertex sets every attribute and the id, `out` is zeroed per chunk.
+      // Filled by shadePending: the id, then fetchGroup sets every attribute, `out` is zeroed per chunk.
       pendingIn.append(shadeCount);
       pendingOut.append(shadeCount);
 
@@ -485,26 +506,22 @@ struct CpuBackend::Impl {
         VertexIn* const in = pendingIn.data.get() + p.vtx + vc.begin;
         VertexOut* const out = pendingOut.data.get() + p.vtx + vc.begin;
         const size_t n = vc.end - vc.begin;
-        const auto index = [&](size_t i) { return p.dense ? p.lo + uint32_t(vc.begin + i) : idx[vc.begin + i]; };
-        if (!keepInputs) {
-          // Only the outputs are read later: the inputs go through a group buffer that stays in L1
-          // instead of the slice's array (6 MB of VertexIn written and evicted per slice of a setup-
-          // bound draw). The same values are shaded; only where their VertexIns live differs.
-          constexpr size_t kGroup = 64;
-          VertexIn group[kGroup];
-          for (size_t g = 0; g < n; g += kGroup) {
-            const size_t m = std::min(kGroup, n - g);
-            for (size_t i = 0; i < m; ++i) fetchVertex(*p.vertexBuffer, p.layout, index(g + i), group[i]);
-            std::memset(static_cast<void*>(out + g), 0, m * sizeof(VertexOut));
-            ds.program->shadeVertices(std::span<const VertexIn>(group, m), std::span<VertexOut>(out + g, m), ds.ctx);
-          }
-          continue;
+        // In groups of kGroup vertices: fetch, clear the outputs (one fill per group: a fill per
+        // 128-byte VertexOut compiled to a `rep stos` each, whose start-up cost made it over half of
+        // the vertex stage of city_block), shade. Unless provenance mode reads them later, the inputs
+        // go through a group buffer that stays in L1 instead of the slice's array (6 MB of VertexIn
+        // written and evicted per slice of a setup-bound draw). The same values are shaded either way.
+        constexpr size_t kGroup = 64;
+        VertexIn group[kGroup];
+        for (size_t g = 0; g < n; g += kGroup) {
+          const size_t m = std::min(kGroup, n - g);
+          VertexIn* const gin = keepInputs ? in + g : group;
+          for (size_t i = 0; i < m; ++i)
+            gin[i].vertexId = p.dense ? p.lo + uint32_t(vc.begin + g + i) : idx[vc.begin + g + i];
+          fetchGroup(*p.vertexBuffer, p.layout, gin, m);
+          std::memset(static_cast<void*>(out + g), 0, m * sizeof(VertexOut));
+          ds.program->shadeVertices(std::span<const VertexIn>(gin, m), std::span<VertexOut>(out + g, m), ds.ctx);
         }
-        for (size_t i = 0; i < n; ++i) fetchVertex(*p.vertexBuffer, p.layout, index(i), in[i]);
-        // One fill of the chunk: a fill per 128-byte VertexOut compiled to a `rep stos` each, whose
-        // start-up cost made it over half of the vertex stage (city_block).
-        std::memset(static_cast<void*>(out), 0, n * sizeof(VertexOut));
-        ds.program->shadeVertices(std::span<const VertexIn>(in, n), std::span<VertexOut>(out, n), ds.ctx);
       }
       if (timing) scratch.local().ticks.t[kStageVertex] += stageClock() - t0;
     });
