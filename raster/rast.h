@@ -74,6 +74,27 @@ struct RastScratch {
   // The colour write's unorm8 kernel (raster/fragops_simd.h), resolved per tile by rasterizeTile.
   Unorm8QuadFn unorm8Quad = nullptr;
   BlendSourceOverQuadFn blendSourceOverQuad = nullptr;  // the same for a source-over blend
+  // The last 16 colour values (their bits) the walk converted with unorm8Quad, and the bytes they gave
+  // (rast.cpp, toUnorm8). Zero values give zero bytes, so the initial state is a true entry.
+  struct UnormMemo {
+    uint64_t in[8] = {};
+    uint8_t out[16] = {};
+    // out = fn(values) for a quad's 16 values: from the entry when all 64 bytes of the values equal
+    // it (exact: fn is a pure function of the bits), otherwise converted, entered, and `ask` cleared.
+    void convert(Unorm8QuadFn fn, const float* values, uint8_t* bytes, bool& ask) {
+      uint64_t v[8], diff = 0;
+      std::memcpy(v, values, sizeof v);
+      for (int i = 0; i < 8; ++i) diff |= v[i] ^ in[i];
+      if (diff == 0) {
+        std::memcpy(bytes, out, sizeof out);
+        return;
+      }
+      ask = false;
+      fn(values, bytes);
+      std::memcpy(in, v, sizeof v);
+      std::memcpy(out, bytes, sizeof out);
+    }
+  } unormMemo;
   // The interpolation kernels (raster/interpolate_simd.h), resolved per tile; nullptr under
   // "reference", where every quad takes interpolateQuadDepth / interpolateQuadVaryings below.
   QuadDepthsFn quadDepths = nullptr;
