@@ -559,6 +559,7 @@ struct CpuBackend::Impl {
         sink.clear();
         sink.segment = p.segment;
         sink.tilesX = scene.tilesX;
+        const bool geometryStage = ds.program->hasGeometryStage();  // once per chunk, not per triangle
         const uint32_t t0 = uint32_t((c - p.firstChunk) * kSetupChunk);
         const uint32_t t1 = std::min<uint32_t>(p.triCount, t0 + uint32_t(kSetupChunk));
         for (uint32_t t = t0; t < t1; ++t) {
@@ -573,10 +574,10 @@ struct CpuBackend::Impl {
           uint32_t layer = 0;
           const uint32_t primitiveId = p.firstTri + t;  // gl_PrimitiveID: the triangle's place in its draw
           VertexOut v[3];
-          if (ds.program->hasGeometryStage()) {
+          if (geometryStage) {
             for (int k = 0; k < 3; ++k) v[k] = *vp[k], vp[k] = &v[k];
           }
-          if (ds.program->hasGeometryStage() && !ds.program->shadeTriangle(v, primitiveId, layer, ds.ctx)) {
+          if (geometryStage && !ds.program->shadeTriangle(v, primitiveId, layer, ds.ctx)) {
             ++sink.stats.primitives_assembled;
             ++sink.stats.primitives_dropped_by_program;
             continue;

@@ -41,7 +41,8 @@ struct TriSetup {
   // TriSetup{} and `TriSetup t;` are as for an aggregate (zeroed, uninitialised). Setup builds each
   // one in place with NoInit: value-initialising its 472 bytes was a `rep stos` per triangle (4 % of
   // a setup-bound frame), and binTriangle writes every member that is read (the varyings up to the
-  // draw's count; depthSig 0 until provenance mode sets it).
+  // draw's count, the provenance-only members in provenance mode; depthSig 0 until provenance mode
+  // sets it).
   struct NoInit {};
   TriSetup() = default;
   explicit TriSetup(NoInit) {}
@@ -61,10 +62,10 @@ struct TriSetup {
   uint32_t drawState;               // index into Scene::states
   bool frontFacing;
   bool clipped;                     // made by clipping: its edges may sit elsewhere in GL (CLIP_EDGE)
-  // Provenance only: the snapped window position of each vertex (sub-pixels, counter-clockwise
-  // order) to recognise an edge that two triangles share (EdgeTag in provenance.h); per edge (opposite
-  // vertex i) its kind and the extra distance (sub-pixels) by which GL may place it elsewhere because
-  // clipping computed an endpoint (docs/crosscheck.md, CLIP_EDGE).
+  // Provenance only (setup leaves them unset otherwise): the snapped window position of each vertex
+  // (sub-pixels, counter-clockwise order) to recognise an edge that two triangles share (EdgeTag in
+  // provenance.h); per edge (opposite vertex i) its kind and the extra distance (sub-pixels) by which
+  // GL may place it elsewhere because clipping computed an endpoint (docs/crosscheck.md, CLIP_EDGE).
   int64_t vx[3], vy[3];
   uint8_t edgeKind[3];  // EdgeKind
   double clipMarginSub[3];
@@ -127,7 +128,7 @@ struct Scene {
   double vertexSnapPx = 0.0;   // provenance: tolerance::vertexSnapPx of the judged implementation
   std::vector<std::unique_ptr<DrawState>> states;
   // The set-up triangles, in blocks: one block is one setup sink's output (setup.h), moved in whole
-  // rather than copied, since a TriSetup is about 460 bytes and a setup-bound frame has millions.
+  // rather than copied, since a TriSetup is 472 bytes and a setup-bound frame has millions.
   // reset() returns the blocks to `spareBlocks` with their capacity, so steady frames allocate nothing.
   std::vector<std::vector<TriSetup>> triBlocks;
   std::vector<std::vector<TriSetup>> spareBlocks;

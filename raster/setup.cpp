@@ -70,10 +70,12 @@ void binTriangle(const WindowVertex& w0, const WindowVertex& w1, const WindowVer
     t.bias[i] = inclusive ? 0 : 1;
     t.invW[i] = wv[i]->invW;
     t.z[i] = wv[i]->z;
-    t.vx[i] = wv[i]->x;
-    t.vy[i] = wv[i]->y;
-    t.edgeKind[i] = internalOpp[i] ? kEdgeInternal : (p.original && q.original) ? kEdgeOriginal : kEdgeClipped;
-    t.clipMarginSub[i] = t.edgeKind[i] == kEdgeClipped ? std::max(p.errSub, q.errSub) : 0.0;
+    if (params.provenance) {  // read by provenance mode only (TriSetup)
+      t.vx[i] = wv[i]->x;
+      t.vy[i] = wv[i]->y;
+      t.edgeKind[i] = internalOpp[i] ? kEdgeInternal : (p.original && q.original) ? kEdgeOriginal : kEdgeClipped;
+      t.clipMarginSub[i] = t.edgeKind[i] == kEdgeClipped ? std::max(p.errSub, q.errSub) : 0.0;
+    }
     for (int k = 0; k < params.varyings; ++k)
       t.var[i][k] = wv[i]->var ? float(wv[i]->var[k]) : wv[i]->varF[k];
   }
