@@ -413,16 +413,24 @@ struct CpuBackend::Impl {
     }
   }
 
-  uint32_t readIndex(uint32_t i) const {
-    const BufferData& ib = *buffers[indexBuffer];
-    if (indexType == IndexType::U16) {
-      uint16_t v;
-      std::memcpy(&v, ib.bytes.data() + size_t(i) * 2, 2);
-      return v;
+  // The n vertex indices from firstIndex on (validation has checked that they are in the buffer), in
+  // one pass per type: this runs on the calling thread, before the parallel stages, and a buffer
+  // lookup and type test per index were 1.5 % of a setup-bound frame.
+  void readIndices(bool indexed, uint32_t firstIndex, uint32_t n, uint32_t* idx) const {
+    if (!indexed) {
+      for (uint32_t i = 0; i < n; ++i) idx[i] = firstIndex + i;
+      return;
     }
-    uint32_t v;
-    std::memcpy(&v, ib.bytes.data() + size_t(i) * 4, 4);
-    return v;
+    const uint8_t* const src = buffers[indexBuffer]->bytes.data();
+    if (indexType == IndexType::U16) {
+      for (uint32_t i = 0; i < n; ++i) {
+        uint16_t v;
+        std::memcpy(&v, src + (size_t(firstIndex) + i) * 2, 2);
+        idx[i] = v;
+      }
+      return;
+    }
+    std::memcpy(idx, src + size_t(firstIndex) * 4, size_t(n) * 4);
   }
 
   void draw(const Draw& d) {
@@ -457,7 +465,7 @@ struct CpuBackend::Impl {
       pd.firstTri = firstTri;
       pd.idx = pendingIdx.size;
       uint32_t* const idx = pendingIdx.append(n);
-      for (uint32_t i = 0; i < n; ++i) idx[i] = d.indexed ? readIndex(firstIndex + i) : firstIndex + i;
+      readIndices(d.indexed, firstIndex, n, idx);
       uint32_t lo = idx[0], hi = idx[0];
       for (uint32_t i = 0; i < n; ++i) lo = std::min(lo, idx[i]), hi = std::max(hi, idx[i]);
       const bool dense = uint64_t(hi - lo) + 1 <= uint64_t(n) * 2;
