@@ -15,12 +15,12 @@
 namespace tessera::scenes {
 namespace {
 
-constexpr int kSize = 16;
-constexpr int kTris = 200;  // 600 vertices: ten groups, the last one partial
+constexpr int kFetchSize = 16;
+constexpr int kFetchTris = 200;  // 600 vertices: ten groups, the last one partial
 
 // A colour level in [0, 4]: the channel value level / 5 is level * 51 as unorm8 (exact enough that
 // the barycentric sum's rounding cannot move it: 51 k is an integer, far from a rounding boundary).
-int level(int i, int channel) { return channel == 0 ? i % 5 : (i / 5) % 5; }
+int fetchLevel(int i, int channel) { return channel == 0 ? i % 5 : (i / 5) % 5; }
 
 // One triangle per pixel centre, triangle i at pixel i, coloured by its index through vertex_color's
 // attribute 1. `u32`: the colour is a 3-component U32 attribute holding 0 or 1 per channel (level
@@ -35,25 +35,25 @@ CommandList fetchFrame(bool u32, bool spread) {
   };
   static_assert(sizeof(V) == 32, "the layout below assumes a 32-byte vertex");
   const int every = spread ? 4 : 1;
-  std::vector<V> verts(size_t(kTris) * 3 * size_t(every), V{{-50, -50}, {0, 0}, {0, 0, 0}, 0});
+  std::vector<V> verts(size_t(kFetchTris) * 3 * size_t(every), V{{-50, -50}, {0, 0}, {0, 0, 0}, 0});
   std::vector<uint32_t> idx;
-  for (int i = 0; i < kTris; ++i) {
-    const float x = float(i % kSize), y = float(i / kSize);
+  for (int i = 0; i < kFetchTris; ++i) {
+    const float x = float(i % kFetchSize), y = float(i / kFetchSize);
     const float corner[3][2] = {{x + 0.1f, y + 0.1f}, {x + 0.95f, y + 0.1f}, {x + 0.1f, y + 0.95f}};
     for (int k = 0; k < 3; ++k) {
       const size_t at = (size_t(i) * 3 + size_t(k)) * size_t(every);
       V& v = verts[at];
       v.pos[0] = corner[k][0], v.pos[1] = corner[k][1];
-      v.rgF[0] = float(level(i, 0)) / 5.0f, v.rgF[1] = float(level(i, 1)) / 5.0f;
-      for (int c = 0; c < 3; ++c) v.rgbU[c] = uint32_t(level(i, c == 2 ? 0 : c) & 1);
+      v.rgF[0] = float(fetchLevel(i, 0)) / 5.0f, v.rgF[1] = float(fetchLevel(i, 1)) / 5.0f;
+      for (int c = 0; c < 3; ++c) v.rgbU[c] = uint32_t(fetchLevel(i, c == 2 ? 0 : c) & 1);
       idx.push_back(uint32_t(at));
     }
   }
   CommandList cl;
   RenderTarget t;
-  t.color[0] = createTarget(cl, Format::RGBA8, kSize, kSize);
+  t.color[0] = createTarget(cl, Format::RGBA8, kFetchSize, kFetchSize);
   cl.setRenderTarget(t);
-  cl.setViewport({0, 0, kSize, kSize});
+  cl.setViewport({0, 0, kFetchSize, kFetchSize});
   cl.clearColor(0, {0, 0, 0, 0});
   const ResourceId vb = cl.createBuffer(
       BufferKind::Vertex, {reinterpret_cast<const uint8_t*>(verts.data()), verts.size() * sizeof(V)});
@@ -65,7 +65,7 @@ CommandList fetchFrame(bool u32, bool spread) {
   l.attribs[3] = u32 ? VertexAttrib{1, 3, AttribType::U32, uint32_t(offsetof(V, rgbU))}
                      : VertexAttrib{1, 2, AttribType::F32, uint32_t(offsetof(V, rgF))};
   cl.useProgram(cl.createProgram("vertex_color"));
-  setMatrix(cl, 0, ortho(0, kSize, 0, kSize, -1, 1));
+  setMatrix(cl, 0, ortho(0, kFetchSize, 0, kFetchSize, -1, 1));
   cl.bindVertexBuffer(vb);
   cl.setVertexLayout(l);
   cl.bindIndexBuffer(ib, IndexType::U32);
@@ -73,7 +73,7 @@ CommandList fetchFrame(bool u32, bool spread) {
   return cl;
 }
 
-std::vector<uint8_t> render(const CommandList& cl, int threads, bool provenance) {
+std::vector<uint8_t> renderFetch(const CommandList& cl, int threads, bool provenance) {
   RenderOptions o{threads};
   o.provenance = provenance;
   CpuBackend b(o);
@@ -88,18 +88,18 @@ TEST(VertexFetch, EveryVertexGetsItsOwnAttributesWithGlsDefaultsForMissingCompon
     for (const bool spread : {false, true})
       for (const int threads : {1, 2})
         for (const bool provenance : {false, true}) {
-          const std::vector<uint8_t> img = render(fetchFrame(u32, spread), threads, provenance);
-          ASSERT_EQ(img.size(), size_t(kSize * kSize * 4));
-          for (int i = 0; i < kSize * kSize; ++i) {
-            // imagePixels is top-down; pixel i of the frame is at row kSize - 1 - i / kSize.
-            const int x = i % kSize, y = i / kSize;
-            const uint8_t* px = &img[(size_t(kSize - 1 - y) * kSize + size_t(x)) * 4];
+          const std::vector<uint8_t> img = renderFetch(fetchFrame(u32, spread), threads, provenance);
+          ASSERT_EQ(img.size(), size_t(kFetchSize * kFetchSize * 4));
+          for (int i = 0; i < kFetchSize * kFetchSize; ++i) {
+            // imagePixels is top-down; pixel i of the frame is at row kFetchSize - 1 - i / kFetchSize.
+            const int x = i % kFetchSize, y = i / kFetchSize;
+            const uint8_t* px = &img[(size_t(kFetchSize - 1 - y) * kFetchSize + size_t(x)) * 4];
             uint8_t expect[4] = {0, 0, 0, 0};  // the clear colour where no triangle is
-            if (i < kTris) {
+            if (i < kFetchTris) {
               if (u32) {
-                for (int c = 0; c < 3; ++c) expect[c] = uint8_t(255 * (level(i, c == 2 ? 0 : c) & 1));
+                for (int c = 0; c < 3; ++c) expect[c] = uint8_t(255 * (fetchLevel(i, c == 2 ? 0 : c) & 1));
               } else {
-                expect[0] = uint8_t(51 * level(i, 0)), expect[1] = uint8_t(51 * level(i, 1));  // blue: 0
+                expect[0] = uint8_t(51 * fetchLevel(i, 0)), expect[1] = uint8_t(51 * fetchLevel(i, 1));  // blue: 0
               }
               expect[3] = 255;  // alpha: the default w of 1
             }
