@@ -141,6 +141,26 @@ TEST(HierarchicalZ, ACoplanarLayerPassesUnderLEqualAndFailsUnderLess) {
   EXPECT_EQ(int(r.images[0][centre + 1]), 64);   // (1 % 5) / 4 = 0.25
 }
 
+TEST(HierarchicalZ, ASlopedCoplanarLayerIsWalkedAndItsTiesFollowTheFunction) {
+  // A sloped layer drawn again on the same plane: its least vertex depth is below every block's
+  // largest, so no block is skipped and every pixel's test is a tie, decided per quad by the walk (the
+  // SIMD comparison of rast.cpp's depthPassMask, the scalar one under "reference"). LESS fails
+  // everywhere, LEQUAL passes everywhere.
+  for (const CompareFunc f : {CompareFunc::Less, CompareFunc::LEqual}) {
+    const std::vector<Layer> layers = {
+        {-1, -1, 1, 1, -0.6f, 0.7f},
+        {-1, -1, 1, 1, -0.6f, 0.7f, f},
+    };
+    expectReferenceBytes(layers, f == CompareFunc::Less ? "sloped coplanar, LESS" : "sloped coplanar, LEQUAL");
+    const Rendered r = renderList(frame(layers), 2);
+    ASSERT_EQ(r.images.size(), 1u);
+    const size_t centre = (size_t(kOddHeight / 2) * kOddWidth + kOddWidth / 2) * 4;
+    // Layer 0 is (0, 0, 0), layer 1 (0.5, 0.25, 1/6): the second layer shows under LEQUAL only.
+    EXPECT_EQ(int(r.images[0][centre + 0]), f == CompareFunc::LEqual ? 128 : 0);
+    EXPECT_EQ(r.stats.fragments_depth_failed, f == CompareFunc::Less ? uint64_t(kOddWidth) * kOddHeight : 0u);
+  }
+}
+
 TEST(HierarchicalZ, DepthThatOtherFunctionsOrAClearRaiseIsSeenByTheNextLessTest) {
   // A block's largest depth is remembered; a draw that writes farther depths (ALWAYS, GREATER) or a
   // depth clear must make it recomputed, or the next LESS layer would be skipped where it is visible.
