@@ -28,7 +28,10 @@ enum class ClipResult { Inside, Outside, Clipped };
 
 // Classifies the triangle. Inside: no plane cuts it (use the original vertices unchanged).
 // Outside: all three vertices lie strictly outside one plane. Otherwise Clipped.
-// The vertices are read in place (setup passes pointers into the vertex stage's output).
+// The vertices are read in place (setup passes pointers into the vertex stage's output). A vertex
+// with a NaN or infinite position coordinate makes the triangle Outside. The six fixed planes are
+// tested in SSE2 pairs where available, the scalar steps under the "reference" SIMD target (the same
+// results: tests/raster/test_classify.cpp).
 ClipResult classifyTriangle(const VertexOut* const (&v)[3], uint8_t clipMask);
 inline ClipResult classifyTriangle(const VertexOut (&v)[3], uint8_t clipMask) {
   const VertexOut* const p[3] = {&v[0], &v[1], &v[2]};
