@@ -545,7 +545,7 @@ class TriangleRasterizer {
   // last conversion (RastScratch::UnormMemo): a constant colour, as a flat-coloured draw writes,
   // converts once instead of per quad. A triangle stops asking the memo at its first miss, so a
   // textured one pays one comparison. Off under "reference" (quadDepths unset): every conversion runs.
-  void toUnorm8(const float* values, uint8_t* out) {
+  void quadUnorm8(const float* values, uint8_t* out) {
     if (unormMemo_ && s_.quadDepths) return s_.unormMemo.convert(unorm8Quad_, values, out, unormMemo_);
     unorm8Quad_(values, out);
   }
@@ -591,7 +591,7 @@ class TriangleRasterizer {
       if (keep && !ds_.blend.enabled)
         for (int a = 0; a < ds_.colorOutputs; ++a)
           if (color_[a].base && color_[a].format == Format::RGBA8)
-            toUnorm8(s_.outs[n].color[a][0].f, unorm[a]);
+            quadUnorm8(s_.outs[n].color[a][0].f, unorm[a]);
       if (keep == 0xF && (unblendedRgba8_ || sourceOverRgba8_)) {
         // The common write of a whole quad: each row's two pixels in one copy, unblended or blended
         // source over four pixels at once (raster/fragops_simd.h: blendSourceOverRgba8's bytes). The
@@ -669,7 +669,7 @@ class TriangleRasterizer {
   const bool lateDepth_;  // the program writes gl_FragDepth: the depth test runs after shading (F11)
   const bool sourceOver_;  // blending is SRC_ALPHA, ONE_MINUS_SRC_ALPHA, ADD (blendSourceOverRgba8)
   const Unorm8QuadFn unorm8Quad_;  // the running SIMD target's unorm8 conversion (RastScratch)
-  bool unormMemo_ = true;  // toUnorm8 asks the memo until its first miss
+  bool unormMemo_ = true;  // quadUnorm8 asks the memo until its first miss
   const bool unblendedRgba8_;  // no blending, and every written attachment is RGBA8 or absent
   const bool sourceOverRgba8_;  // source-over blending, and every written attachment is RGBA8 or absent
   const bool gathered_;  // blocks' quads go through the interpolation kernels (runGathered)

@@ -75,7 +75,7 @@ struct RastScratch {
   Unorm8QuadFn unorm8Quad = nullptr;
   BlendSourceOverQuadFn blendSourceOverQuad = nullptr;  // the same for a source-over blend
   // The last 16 colour values (their bits) the walk converted with unorm8Quad, and the bytes they gave
-  // (rast.cpp, toUnorm8). Zero values give zero bytes, so the initial state is a true entry.
+  // (rast.cpp, quadUnorm8). Zero values give zero bytes, so the initial state is a true entry.
   struct UnormMemo {
     uint64_t in[8] = {};
     uint8_t out[16] = {};
