@@ -35,7 +35,7 @@ void Unorm8Quad(const float* in, uint8_t* out) {
 
 Unorm8QuadFn GetUnorm8Quad() { return &Unorm8Quad; }
 
-void BlendSourceOverQuad(const float* src, uint8_t* texels) {
+void BlendSourceOverQuad(const float* src, uint8_t* row0, uint8_t* row1) {
   const hn::CappedTag<double, 4> d;  // at most one pixel per vector: 4, 2 or 1 lanes
   const hn::Rebind<float, decltype(d)> df;
   const hn::Rebind<int32_t, decltype(d)> di;
@@ -48,14 +48,17 @@ void BlendSourceOverQuad(const float* src, uint8_t* texels) {
   const auto zero = hn::Zero(d), one = hn::Set(d, 1.0), max = hn::Set(d, 255.0);
   const auto magic = hn::Set(d, 6755399441055744.0);  // 1.5 * 2^52
   for (size_t off = 0; off < 16; off += n) {
+    // Lane off + i is channel (off + i) % 4 of pixel (off + i) / 4: n divides 4, so a vector stays
+    // within one pixel's texel.
+    uint8_t* const texel = off < 8 ? row0 + off : row1 + (off - 8);
     const auto v = hn::PromoteTo(d, hn::LoadU(df, src + off));
     const auto s = hn::IfThenElse(hn::Gt(v, zero), hn::IfThenElse(hn::Lt(v, one), v, one), zero);  // clamp01
     // The destination byte as kUnorm8ToDouble holds it: the IEEE quotient byte / 255.
-    const auto dst = hn::Div(hn::PromoteTo(d, hn::PromoteTo(di, hn::LoadU(du8, texels + off))), max);
+    const auto dst = hn::Div(hn::PromoteTo(d, hn::PromoteTo(di, hn::LoadU(du8, texel))), max);
     const auto c = hn::Add(hn::Mul(s, hn::Set(d, a[off / 4])), hn::Mul(dst, hn::Set(d, na[off / 4])));
     const auto r = hn::Sub(hn::Add(hn::Mul(c, max), magic), magic);  // toUnorm8: c * 255 rounded half to even
     const auto u = hn::IfThenElse(hn::Gt(c, zero), hn::IfThenElse(hn::Ge(c, one), max, r), zero);
-    hn::StoreU(hn::DemoteTo(du8, hn::DemoteTo(di, u)), du8, texels + off);  // integers in [0, 255]: exact
+    hn::StoreU(hn::DemoteTo(du8, hn::DemoteTo(di, u)), du8, texel);  // integers in [0, 255]: exact
   }
 }
 
@@ -80,8 +83,8 @@ void scalarUnorm8Quad(const float* in, uint8_t* out) {
   for (int i = 0; i < 16; ++i) out[i] = toUnorm8(in[i]);
 }
 
-void scalarBlendSourceOverQuad(const float* src, uint8_t* texels) {
-  for (int p = 0; p < 4; ++p) blendSourceOverRgba8(src + 4 * p, texels + 4 * p);
+void scalarBlendSourceOverQuad(const float* src, uint8_t* row0, uint8_t* row1) {
+  for (int p = 0; p < 4; ++p) blendSourceOverRgba8(src + 4 * p, (p < 2 ? row0 : row1) + 4 * (p & 1));
 }
 
 }  // namespace

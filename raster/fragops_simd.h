@@ -27,9 +27,11 @@ using Unorm8QuadFn = void (*)(const float* in, uint8_t* out);
 // The kernel of the target running now. Resolve it once per triangle: a dispatch calls into libhwy.
 Unorm8QuadFn unorm8QuadKernel();
 
-// texels[4 p + k] = blendSourceOverRgba8(src + 4 p, texels + 4 p)[k] for the quad's pixels p < 4:
-// src is the program's RGBA per pixel, texels the destination RGBA8 bytes, updated in place.
-using BlendSourceOverQuadFn = void (*)(const float* src, uint8_t* texels);
+// blendSourceOverRgba8(src + 4 p, texel p) for the quad's pixels p < 4: src is the program's RGBA per
+// pixel; the destination RGBA8 texels, updated in place, are row0[0..7] (pixels 0, 1) and row1[0..7]
+// (pixels 2, 3). The rows are the target's own bytes: a copy through a 16-byte buffer cost a failed
+// store forwarding per row (the kernel stores a pixel's 4 bytes, the copy then loaded 8).
+using BlendSourceOverQuadFn = void (*)(const float* src, uint8_t* row0, uint8_t* row1);
 BlendSourceOverQuadFn blendSourceOverQuadKernel();
 
 }  // namespace tessera::detail

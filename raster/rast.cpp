@@ -603,9 +603,8 @@ class TriangleRasterizer {
         for (int a = 0; a < ds_.colorOutputs; ++a) {
           if (!color_[a].base) continue;
           if (sourceOverRgba8_) {
-            std::memcpy(unorm[a], color_[a].at(q.x, q.y), 8);
-            std::memcpy(unorm[a] + 8, color_[a].at(q.x, q.y + 1), 8);
-            s_.blendSourceOverQuad(s_.outs[n].color[a][0].f, unorm[a]);
+            s_.blendSourceOverQuad(s_.outs[n].color[a][0].f, color_[a].at(q.x, q.y), color_[a].at(q.x, q.y + 1));
+            continue;
           }
           std::memcpy(color_[a].at(q.x, q.y), unorm[a], 8);
           std::memcpy(color_[a].at(q.x, q.y + 1), unorm[a] + 8, 8);

@@ -59,7 +59,7 @@ TEST(SimdBlend, EveryTargetGivesBlendSourceOverRgba8sBytesForEveryDestinationByt
     simd::forceTarget(target);
     const detail::BlendSourceOverQuadFn kernel = detail::blendSourceOverQuadKernel();
     std::vector<uint8_t> got = dst;
-    for (size_t q = 0; q < src.size() / 16; ++q) kernel(&src[16 * q], &got[16 * q]);
+    for (size_t q = 0; q < src.size() / 16; ++q) kernel(&src[16 * q], &got[16 * q], &got[16 * q + 8]);
     for (size_t i = 0; i < got.size(); ++i)
       ASSERT_EQ(int(got[i]), int(expect[i])) << "target " << target << ", value " << i << ": source " << src[i]
                                              << ", alpha " << src[i | 3] << ", destination " << int(dst[i]);
