@@ -376,9 +376,15 @@ struct CpuBackend::Impl {
   // where a layout's attributes differ in them (a third of a setup-bound frame's vertex stage).
   // Attributes in the layout's order, so where two name one location the later one is what a vertex
   // keeps.
-  static void fetchGroup(const BufferData& vb, const VertexLayout& layout, VertexIn* in, size_t n) {
+  // GL's value of an attribute the layout does not supply, (0, 0, 0, 1), in every attribute of in[0, n).
+  static void fillDefaults(VertexIn* in, size_t n) {
     for (size_t i = 0; i < n; ++i)
       for (Vec4& v : in[i].attr) v = {0.0f, 0.0f, 0.0f, 1.0f};
+  }
+
+  // The layout's attributes of in[0, n) (vertexId set), over GL's defaults that fillDefaults wrote: a
+  // location gets the same components from every vertex, so what stays default stays default.
+  static void fetchGroup(const BufferData& vb, const VertexLayout& layout, VertexIn* in, size_t n) {
     for (const VertexAttrib& at : layout.attribs) {
       if (at.components == 0 || at.location >= kMaxAttribs) continue;
       const uint8_t* const src = vb.bytes.data() + at.offset;
@@ -474,7 +480,8 @@ struct CpuBackend::Impl {
       pd.vertexBuffer = buffers[vertexBuffer].get();
       pd.layout = layout;
       pd.segment = scene.segment;
-      // Filled by shadePending: the id, then fetchGroup sets every attribute, `out` is zeroed per chunk.
+      // Filled by shadePending: the id, then fillDefaults and fetchGroup set every attribute; `out` is
+      // zeroed per group.
       pendingIn.append(shadeCount);
       pendingOut.append(shadeCount);
 
@@ -519,11 +526,16 @@ struct CpuBackend::Impl {
         // the vertex stage of city_block), shade. Unless provenance mode reads them later, the inputs
         // go through a group buffer that stays in L1 instead of the slice's array (6 MB of VertexIn
         // written and evicted per slice of a setup-bound draw). The same values are shaded either way.
+        // The group buffer's defaults are written once per chunk: one layout fills the same
+        // components of it for every group, and the rest keep GL's defaults (each vertex's 128 bytes of
+        // defaults were a sixth of a setup-bound frame's vertex stage).
         constexpr size_t kGroup = 64;
         VertexIn group[kGroup];
+        if (!keepInputs) fillDefaults(group, std::min(kGroup, n));
         for (size_t g = 0; g < n; g += kGroup) {
           const size_t m = std::min(kGroup, n - g);
           VertexIn* const gin = keepInputs ? in + g : group;
+          if (keepInputs) fillDefaults(gin, m);
           for (size_t i = 0; i < m; ++i)
             gin[i].vertexId = p.dense ? p.lo + uint32_t(vc.begin + g + i) : idx[vc.begin + g + i];
           fetchGroup(*p.vertexBuffer, p.layout, gin, m);

@@ -26,7 +26,10 @@ int fetchLevel(int i, int channel) { return channel == 0 ? i % 5 : (i / 5) % 5; 
 // attribute 1. `u32`: the colour is a 3-component U32 attribute holding 0 or 1 per channel (level
 // odd); otherwise a 2-component F32 attribute (level / 5), so blue reads 0 and alpha 1. `spread`:
 // the used vertices sit every fourth one in the buffer, so the draw's indices are not dense.
-CommandList fetchFrame(bool u32, bool spread) {
+// `earlier`: a draw before it, in the same flush, fetches a 4-component colour (0.8, 0.8, 0.8, 0.2)
+// at the same location for as many vertices, all outside the target: whatever it leaves in a vertex
+// input must not reach the components the colour draw's layout leaves out.
+CommandList fetchFrame(bool u32, bool spread, bool earlier = false) {
   struct V {
     float pos[2];
     float rgF[2];
@@ -66,6 +69,19 @@ CommandList fetchFrame(bool u32, bool spread) {
                      : VertexAttrib{1, 2, AttribType::F32, uint32_t(offsetof(V, rgF))};
   cl.useProgram(cl.createProgram("vertex_color"));
   setMatrix(cl, 0, ortho(0, kFetchSize, 0, kFetchSize, -1, 1));
+  if (earlier) {
+    const float outside[8] = {-50, -50, 0.8f, 0.8f, 0.8f, 0.2f, 0, 0};
+    std::vector<float> other;
+    for (size_t v = 0; v < idx.size(); ++v) other.insert(other.end(), outside, outside + 8);
+    cl.bindVertexBuffer(cl.createBuffer(
+        BufferKind::Vertex, {reinterpret_cast<const uint8_t*>(other.data()), other.size() * sizeof(float)}));
+    VertexLayout l4;
+    l4.stride = 8 * sizeof(float);
+    l4.attribs[0] = {0, 2, AttribType::F32, 0};
+    l4.attribs[3] = {1, 4, AttribType::F32, 2 * sizeof(float)};
+    cl.setVertexLayout(l4);
+    cl.draw(0, uint32_t(idx.size()));
+  }
   cl.bindVertexBuffer(vb);
   cl.setVertexLayout(l);
   cl.bindIndexBuffer(ib, IndexType::U32);
@@ -88,7 +104,10 @@ TEST(VertexFetch, EveryVertexGetsItsOwnAttributesWithGlsDefaultsForMissingCompon
     for (const bool spread : {false, true})
       for (const int threads : {1, 2})
         for (const bool provenance : {false, true}) {
-          const std::vector<uint8_t> img = renderFetch(fetchFrame(u32, spread), threads, provenance);
+          // An earlier draw with a wider layout only with the dense F32 frame (where its stale blue and
+          // alpha would show), at both thread counts and in both modes.
+          const bool earlier = !u32 && !spread;
+          const std::vector<uint8_t> img = renderFetch(fetchFrame(u32, spread, earlier), threads, provenance);
           ASSERT_EQ(img.size(), size_t(kFetchSize * kFetchSize * 4));
           for (int i = 0; i < kFetchSize * kFetchSize; ++i) {
             // imagePixels is top-down; pixel i of the frame is at row kFetchSize - 1 - i / kFetchSize.
@@ -106,7 +125,8 @@ TEST(VertexFetch, EveryVertexGetsItsOwnAttributesWithGlsDefaultsForMissingCompon
             for (int c = 0; c < 4; ++c)
               ASSERT_EQ(int(px[c]), int(expect[c]))
                   << "triangle " << i << ", channel " << c << (u32 ? ", U32" : ", F32") << (spread ? ", spread" : "")
-                  << ", " << threads << " threads" << (provenance ? ", provenance" : "");
+                  << ", " << threads << " threads" << (provenance ? ", provenance" : "")
+                  << (earlier ? ", after a wider layout" : "");
           }
         }
 }
