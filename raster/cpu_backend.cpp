@@ -39,8 +39,9 @@ void Scene::begin(const TargetView& t) {
   binSegment.assign(bins.size(), 0);
 }
 
-void Scene::reset() {
+void Scene::reset(bool keepSegments) {
   states.clear();
+  triangles = 0;
   for (auto& b : triBlocks) {
     b.clear();
     spareBlocks.push_back(std::move(b));
@@ -49,7 +50,7 @@ void Scene::reset() {
   blocks.clear();
   clears.clear();
   for (auto& b : bins) b.clear();
-  std::fill(binSegment.begin(), binSegment.end(), 0);
+  if (!keepSegments) std::fill(binSegment.begin(), binSegment.end(), 0);
 }
 
 
@@ -128,6 +129,14 @@ struct AppendArray {
 // 16384, 8192 or 4096 (1 thread); city_block did not change.
 constexpr size_t kPendingTriangles = 16384;
 
+// The set-up triangles a scene holds before it is rasterized, whatever comes next: a flush for memory.
+// A TriSetup is 472 bytes, so a frame of a million triangles binned whole wrote 472 MB that the tiles
+// then read back from memory; a scene of this bound stays within the last-level cache. The bytes are
+// those of one scene: every tile applies its commands in submission order, and this scene's commands
+// all precede the next one's; the hierarchical Z and visibility runs start afresh per tile pass, and
+// both are exact. tiles_rasterized counts bins per upload segment, which a flush for memory continues.
+constexpr size_t kSceneTriangles = 16384;  // a slice's (kPendingTriangles): docs/bench.md
+
 }  // namespace
 
 struct CpuBackend::Impl {
@@ -199,6 +208,7 @@ struct CpuBackend::Impl {
   tbb::enumerable_thread_specific<RastScratch> scratch;
   StageTimes times;
   uint64_t binTicks = 0;  // appendToScene runs on the calling thread
+  uint64_t scenesRasterized = 0;  // StageTimes::scenes
   // LOD probe: per (colour attachment 0, level), one map per layer.
   std::map<std::pair<const TextureData*, uint32_t>, std::vector<LodMap>> lodMaps;
   // The previous frame's LOD maps (about 42 MB at 640x480): reused like `storage`, released likewise.
@@ -245,9 +255,10 @@ struct CpuBackend::Impl {
     return v;
   }
 
-  void flush() {
+  void flush(bool forMemory = false) {
     setupPending();
     if (scene.empty()) return;
+    ++scenesRasterized;
     const size_t tiles = scene.bins.size();
     tbb::enumerable_thread_specific<PipelineStats> local;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles, 1), [&](const tbb::blocked_range<size_t>& r) {
@@ -257,8 +268,18 @@ struct CpuBackend::Impl {
     });
     // Integer sums: the total does not depend on how tiles were spread over threads.
     for (const PipelineStats& st : local) stats.add(st);
-    scene.reset();
+    scene.reset(forMemory);
     sceneReads.clear();
+  }
+
+  // The resources a draw's unexecuted work reads (flushIfRead).
+  void noteReads(const DrawState& ds) {
+    for (const TexUnit& u : ds.ctx.units)
+      if (u.tex) {
+        sceneReads.insert(u.tex);
+        if (u.tex->buffer) sceneReads.insert(u.tex->buffer);
+      }
+    sceneReads.insert(buffers[vertexBuffer].get());
   }
 
   // Flushes when unexecuted work reads `resource` (a TextureData or BufferData; sceneReads).
@@ -442,16 +463,11 @@ struct CpuBackend::Impl {
   void draw(const Draw& d) {
     const uint32_t triCount = d.count / 3;
     if (triCount == 0) return;
-    const uint32_t stateIndex = uint32_t(scene.states.size());
+    uint32_t stateIndex = uint32_t(scene.states.size());
     scene.states.push_back(snapshot());
     scene.states.back()->drawSerial = drawSerial++;
-    const DrawState& ds = *scene.states.back();
-    for (const TexUnit& u : ds.ctx.units)
-      if (u.tex) {
-        sceneReads.insert(u.tex);
-        if (u.tex->buffer) sceneReads.insert(u.tex->buffer);
-      }
-    sceneReads.insert(buffers[vertexBuffer].get());
+    noteReads(*scene.states.back());
+    const int varyings = scene.states.back()->varyings;  // the state moves if the scene is flushed
 
     const bool timing = scene.timeStages;
     // A large draw goes through in slices of at most kPendingTriangles triangles, each with its own
@@ -490,12 +506,29 @@ struct CpuBackend::Impl {
       params.clampRect = clampRect();
       params.raster = raster;
       params.stateIndex = stateIndex;
-      params.varyings = ds.varyings;
+      params.varyings = varyings;
       params.provenance = options.provenance;
       params.timeStages = timing;
       pending.push_back(pd);
       pendingTris += sliceTris;
-      if (pendingTris >= kPendingTriangles) setupPending();
+      // A bound below a slice (RenderOptions::sceneTriangles, for tests) also sets up sooner.
+      const size_t bound = options.sceneTriangles ? options.sceneTriangles : kSceneTriangles;
+      if (pendingTris >= std::min(kPendingTriangles, bound)) setupPending();
+      if (scene.triangles >= bound) {
+        // The draw's remaining slices go into the next scene, with a copy of its state.
+        const bool more = firstTri + sliceTris < triCount;
+        std::unique_ptr<DrawState> state;
+        if (more) {
+          state = std::make_unique<DrawState>(*scene.states[stateIndex]);
+          state->ctx.uniforms = state->uniforms.data();
+        }
+        flush(true);
+        if (more) {
+          stateIndex = uint32_t(scene.states.size());
+          scene.states.push_back(std::move(state));
+          noteReads(*scene.states.back());
+        }
+      }
     }
   }
 
@@ -808,6 +841,7 @@ void CpuBackend::execute(const CommandList& list, std::string_view frameName) {
   st.frameMs = std::max(0.0, runMs - st.resourcesMs);
   st.perStage = impl_->options.stageTimes;
   st.hizBlocksSkipped = st.hizFragmentsSkipped = st.provPlansSkipped = st.provGridsShared = 0;
+  st.scenes = impl_->scenesRasterized;
   for (const RastScratch& s : impl_->scratch) {
     st.hizBlocksSkipped += s.hizBlocksSkipped;
     st.hizFragmentsSkipped += s.hizFragmentsSkipped;

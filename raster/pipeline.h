@@ -119,6 +119,7 @@ struct PipelineStats {
   uint64_t pixels_written = 0;
   uint64_t tiles_rasterized = 0;         // bins with work, per upload segment (Scene::segment)
   void add(const PipelineStats& o);
+  bool operator==(const PipelineStats&) const = default;
 };
 
 struct Scene {
@@ -151,9 +152,13 @@ struct Scene {
   // LOD probe (lod_probe.h): the maps of the target's colour attachment 0, one per layer, or nullptr.
   std::vector<LodMap>* lod = nullptr;
 
+  size_t triangles = 0;  // in triBlocks (appendToScene)
+
   void begin(const TargetView& t);
   bool empty() const { return triBlocks.empty() && clears.empty(); }
-  void reset();
+  // Empties the scene for the next one. `keepSegments`: the scene continues the same upload segments
+  // (a flush for memory, cpu_backend.cpp), so tiles_rasterized does not count its bins again.
+  void reset(bool keepSegments = false);
   const TriSetup& tri(const TileCmd& c) const { return triBlocks[c.index][c.slot]; }
   // Appends c to bin `b`, issued in upload segment `seg`, and counts a bin new to that segment.
   void push(size_t b, const TileCmd& c, uint64_t seg, PipelineStats& stats) {

@@ -220,6 +220,7 @@ void appendToScene(SetupSink& sink, Scene& scene, PipelineStats& stats) {
   const uint32_t block = uint32_t(scene.triBlocks.size());
   scene.blocks.push_back({sink.tris[0].drawState, uint32_t(std::min<uint64_t>(sink.boxPixels / count, UINT32_MAX))});
   scene.triBlocks.push_back(std::exchange(sink.tris, {}));
+  scene.triangles += count;
   uint32_t begin = 0;
   for (size_t i = 0; i < count; ++i) {
     for (uint32_t k = begin; k < sink.tileEnd[i]; ++k)

@@ -41,6 +41,9 @@ struct StageTimes {
   // Provenance mode's lookup shortcuts (raster/sample_interval.cpp): lambda alternatives not looked up
   // (inside a trilinear level pair's weights), and level grids shared by a lookup's plans.
   uint64_t provPlansSkipped = 0, provGridsShared = 0;
+  // Scenes rasterized (tile passes over the target): one per render target and per upload that pending
+  // work reads, plus one per RenderOptions::sceneTriangles set-up triangles (a flush for memory).
+  uint64_t scenes = 0;
 };
 
 namespace detail {

@@ -33,6 +33,7 @@ static bool g_provenance = false;
 
 static void renderList(benchmark::State& state, const std::string& name, const CommandList& list) {
   uint64_t fragments = 0, hizBlocks = 0, hizFragments = 0, plansSkipped = 0, gridsShared = 0;
+  double scenes = 0.0;
   double constructMs = 0, validateMs = 0, resourcesMs = 0;
   StageTimes sum;
   RenderOptions o{int(state.range(0))};
@@ -51,6 +52,7 @@ static void renderList(benchmark::State& state, const std::string& name, const C
     sum.rastMs += st.rastMs, sum.shadeMs += st.shadeMs, sum.sampleMs += st.sampleMs, sum.fragopsMs += st.fragopsMs;
     fragments += b.stats().fragments_shaded;
     hizBlocks += st.hizBlocksSkipped, hizFragments += st.hizFragmentsSkipped;
+    scenes += double(st.scenes);
     plansSkipped += st.provPlansSkipped, gridsShared += st.provGridsShared;
     benchmark::DoNotOptimize(b.stats().pixels_written);
   }
@@ -62,6 +64,9 @@ static void renderList(benchmark::State& state, const std::string& name, const C
   // Work the hierarchical Z skipped per frame (raster/rast.cpp): blocks and fragments never walked.
   state.counters["hiz_blocks"] = avg(double(hizBlocks));
   state.counters["hiz_fragments"] = avg(double(hizFragments));
+  // Tile passes per frame: a frame is rasterized in more than one scene where its set-up triangles
+  // exceed the scene bound (raster/cpu_backend.cpp, kSceneTriangles) or an upload needs it.
+  state.counters["scenes"] = avg(scenes);
   if (g_provenance) {
     // Provenance mode's lookup shortcuts per frame (raster/sample_interval.cpp): lambda alternatives
     // not looked up, and level grids shared by a lookup's plans.
