@@ -130,12 +130,20 @@ struct AppendArray {
 constexpr size_t kPendingTriangles = 16384;
 
 // The set-up triangles a scene holds before it is rasterized, whatever comes next: a flush for memory.
-// A TriSetup is 472 bytes, so a frame of a million triangles binned whole wrote 472 MB that the tiles
-// then read back from memory; a scene of this bound stays within the last-level cache. The bytes are
-// those of one scene: every tile applies its commands in submission order, and this scene's commands
-// all precede the next one's; the hierarchical Z and visibility runs start afresh per tile pass, and
-// both are exact. tiles_rasterized counts bins per upload segment, which a flush for memory continues.
-constexpr size_t kSceneTriangles = 16384;  // a slice's (kPendingTriangles): docs/bench.md
+// A TriSetup is 472 bytes, so a frame of ten million triangles binned whole would hold 4.7 GB of them.
+// The bytes are those of one scene: every tile applies its commands in submission order, and this
+// scene's commands all precede the next one's; the hierarchical Z and visibility runs start afresh per
+// tile pass, and both are exact. tiles_rasterized counts bins per upload segment, which a flush for
+// memory continues.
+constexpr size_t kSceneTriangles = size_t(1) << 20;
+// At one thread, slices and scenes of this size instead: what setup writes is still in the cache when
+// the tiles read it (tiny_tris_1m 181 -> 166 ms, tiny_tris_100k 19.7 -> 18.6 ms). Not with more
+// threads: a scene's recycled triangle blocks and vertices were then last written by the other core,
+// and every cut cost about 3 ms of cache-line transfers there (tiny_tris_1m at 2 threads: 90 ms as one
+// scene, 130-141 ms in scenes of 65536, up to 165 ms in scenes of 8192; docs/bench.md).
+constexpr size_t kSingleThreadScene = 8192;
+static_assert(kSingleThreadScene % kSetupChunk == 0 && kPendingTriangles % kSetupChunk == 0,
+              "a slice boundary is a chunk boundary");
 
 }  // namespace
 
@@ -209,6 +217,9 @@ struct CpuBackend::Impl {
   StageTimes times;
   uint64_t binTicks = 0;  // appendToScene runs on the calling thread
   uint64_t scenesRasterized = 0;  // StageTimes::scenes
+  // The slice of a large draw and the scene's bound in set-up triangles, chosen per execute() by its
+  // thread count (kSingleThreadScene).
+  size_t sliceTriangles = kPendingTriangles, sceneBound = kSceneTriangles;
   // LOD probe: per (colour attachment 0, level), one map per layer.
   std::map<std::pair<const TextureData*, uint32_t>, std::vector<LodMap>> lodMaps;
   // The previous frame's LOD maps (about 42 MB at 640x480): reused like `storage`, released likewise.
@@ -475,9 +486,8 @@ struct CpuBackend::Impl {
     // whole wrote 800 MB of vertices before setup read them back). A vertex two slices share is shaded
     // in both, with the same result: the vertex stage is a pure function of the index. Slices start at
     // multiples of kSetupChunk, so setup's chunks are the ones the whole draw would have.
-    static_assert(kPendingTriangles % kSetupChunk == 0, "a slice boundary is a chunk boundary");
-    for (uint32_t firstTri = 0; firstTri < triCount; firstTri += uint32_t(kPendingTriangles)) {
-      const uint32_t sliceTris = std::min<uint32_t>(triCount - firstTri, uint32_t(kPendingTriangles));
+    for (uint32_t firstTri = 0; firstTri < triCount; firstTri += uint32_t(sliceTriangles)) {
+      const uint32_t sliceTris = std::min<uint32_t>(triCount - firstTri, uint32_t(sliceTriangles));
       // Vertex indices of the slice, then the distinct vertices to shade. Shading every index of the
       // slice's range keeps the vertex stage a pure function of the index.
       const uint32_t n = sliceTris * 3;
@@ -512,9 +522,8 @@ struct CpuBackend::Impl {
       pending.push_back(pd);
       pendingTris += sliceTris;
       // A bound below a slice (RenderOptions::sceneTriangles, for tests) also sets up sooner.
-      const size_t bound = options.sceneTriangles ? options.sceneTriangles : kSceneTriangles;
-      if (pendingTris >= std::min(kPendingTriangles, bound)) setupPending();
-      if (scene.triangles >= bound) {
+      if (pendingTris >= std::min(sliceTriangles, sceneBound)) setupPending();
+      if (scene.triangles >= sceneBound) {
         // The draw's remaining slices go into the next scene, with a copy of its state.
         const bool more = firstTri + sliceTris < triCount;
         std::unique_ptr<DrawState> state;
@@ -822,6 +831,10 @@ void CpuBackend::execute(const CommandList& list, std::string_view frameName) {
   }
   impl_->executed = true;
   const int threads = impl_->options.threads > 0 ? impl_->options.threads : tbb::this_task_arena::max_concurrency();
+  impl_->sliceTriangles = threads == 1 ? kSingleThreadScene : kPendingTriangles;
+  impl_->sceneBound = impl_->options.sceneTriangles ? impl_->options.sceneTriangles
+                      : threads == 1                ? kSingleThreadScene
+                                                    : kSceneTriangles;
   // oneTBB caps its workers at the machine's concurrency unless a global_control allows more: an arena
   // of 7 on 2 cores then runs on 2 threads and warns. Tests ask for more threads than cores on purpose
   // (tiles spread over threads that preempt each other), so raise the cap for this frame.

@@ -37,9 +37,9 @@ struct RenderOptions {
   // Measure CPU time per pipeline stage (stageTimes()). Costs a few cycle-counter reads per program
   // batch and clipped triangle; every output is the same bytes.
   bool stageTimes = false;
-  // The set-up triangles a scene may hold before it is rasterized (a flush for memory; cpu_backend.cpp,
-  // kSceneTriangles when 0). Every output is the same bytes for any bound: tests render with a bound
-  // of 1, which rasterizes after every draw.
+  // The set-up triangles a scene may hold before it is rasterized (a flush for memory; 0: cpu_backend.cpp's
+  // choice, kSceneTriangles, or kSingleThreadScene at one thread). Every output is the same bytes for
+  // any bound: tests render with a bound of 1, which rasterizes after every draw.
   uint32_t sceneTriangles = 0;
 };
 

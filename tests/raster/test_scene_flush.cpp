@@ -25,6 +25,7 @@ namespace {
 
 constexpr uint32_t kOneScene = UINT32_MAX;  // no flush for memory: the frame is one scene
 constexpr uint32_t kEveryDraw = 1;          // rasterized after every draw, and after every slice of one
+constexpr uint32_t kCut = 16384;            // a draw of 40,000 triangles in three scenes
 
 std::unique_ptr<CpuBackend> renderWithBound(const CommandList& cl, uint32_t bound, bool provenance, int threads) {
   RenderOptions o{threads, provenance, {}, 8};
@@ -70,7 +71,7 @@ INSTANTIATE_TEST_SUITE_P(AllScenes, SceneFlush, ::testing::ValuesIn([] {
                          [](const auto& param) { return param.param; });
 
 // One flat-coloured triangle, then 40,000 textured triangles of about one pixel in one draw over a
-// 256 x 256 target (three scenes at the default bound), then the draw's texture uploaded again with other texels, then one more
+// 256 x 256 target (three scenes at a bound of 16,384), then the draw's texture uploaded again with other texels, then one more
 // triangle drawn with it. The upload must wait for every triangle of the cut draw, the last scene's too.
 CommandList cutTexturedFrame() {
   constexpr int kW = 256, kTris = 40000;
@@ -107,15 +108,18 @@ CommandList cutTexturedFrame() {
 }
 
 TEST(SceneFlush, ADrawCutIntoThreeScenesKeepsItsUniformsAndCounters) {
-  // 40,000 one-pixel triangles in one flat_color draw (its colour is a uniform): the default bound
-  // (16,384 set-up triangles) cuts it into three scenes, the bound of 1 after every slice.
+  // 40,000 one-pixel triangles in one flat_color draw (its colour is a uniform): a bound of 16,384
+  // set-up triangles cuts it into three scenes; a bound of 1 after every slice (16,384 triangles, or
+  // 8,192 at one thread); the default bound at one thread after every 8,192, and not at all with more
+  // threads.
   const CommandList cl = buildTinyTris(256, 256, 40000);
   const auto whole = renderWithBound(cl, kOneScene, false, 1);
   EXPECT_EQ(whole->stageTimes().scenes, 1u);
   for (const int threads : {1, 2, 7})
-    for (const uint32_t bound : {0u, kEveryDraw}) {
+    for (const uint32_t bound : {kCut, kEveryDraw, 0u}) {
       const auto cut = renderWithBound(cl, bound, false, threads);
-      EXPECT_EQ(cut->stageTimes().scenes, 3u) << "bound " << bound;
+      const uint64_t scenes = bound == kCut ? 3 : threads == 1 ? 5 : bound == kEveryDraw ? 3 : 1;
+      EXPECT_EQ(cut->stageTimes().scenes, scenes) << "bound " << bound << ", " << threads << " threads";
       expectSameFrame(cl, *whole, *cut, "bound " + std::to_string(bound) + ", " + std::to_string(threads) + " threads");
     }
   EXPECT_EQ(whole->stats().triangles_binned, 40000u);
@@ -125,9 +129,9 @@ TEST(SceneFlush, AnUploadWaitsForEveryTriangleOfADrawCutBetweenScenes) {
   const CommandList cl = cutTexturedFrame();
   const auto whole = renderWithBound(cl, kOneScene, false, 2);
   EXPECT_EQ(whole->stageTimes().scenes, 2u);  // the upload reads the texture the draw samples
-  for (const uint32_t bound : {0u, kEveryDraw}) {
+  for (const uint32_t bound : {kCut, kEveryDraw}) {
     const auto cut = renderWithBound(cl, bound, false, 2);
-    // Default: the cut draw's first two slices (the flat triangle in the first), the third before the
+    // kCut: the cut draw's first two slices (the flat triangle in the first), the third before the
     // upload, the last triangle. A bound of 1 gives the flat triangle a scene of its own.
     EXPECT_EQ(cut->stageTimes().scenes, bound == kEveryDraw ? 5u : 4u) << "bound " << bound;
     expectSameFrame(cl, *whole, *cut, "bound " + std::to_string(bound));
