@@ -124,7 +124,7 @@ struct AppendArray {
 // Triangles whose setup waits for the next setupPending(). Small draws (a city block: 257 draws of
 // about 80 triangles) then share one parallel setup instead of each running its one chunk on the
 // calling thread; a draw that brings the total to this bound is set up at once, which bounds memory.
-// Large draws go in slices of this size (draw()). 16384 keeps a slice's vertices (about 50k, 13 MB of
+// Large draws go in slices of this size (draw(); kSingleThreadScene at one thread). 16384 keeps a slice's vertices (about 50k, 13 MB of
 // VertexIn + VertexOut) within the last-level cache: tiny_tris_1m took 247 ms at 65536 and 233 ms at
 // 16384, 8192 or 4096 (1 thread); city_block did not change.
 constexpr size_t kPendingTriangles = 16384;
@@ -481,7 +481,7 @@ struct CpuBackend::Impl {
     const int varyings = scene.states.back()->varyings;  // the state moves if the scene is flushed
 
     const bool timing = scene.timeStages;
-    // A large draw goes through in slices of at most kPendingTriangles triangles, each with its own
+    // A large draw goes through in slices of at most sliceTriangles triangles, each with its own
     // vertices, so that what setup reads was shaded moments before (a one-million-triangle draw shaded
     // whole wrote 800 MB of vertices before setup read them back). A vertex two slices share is shaded
     // in both, with the same result: the vertex stage is a pure function of the index. Slices start at

@@ -3,7 +3,7 @@
 // a draw cut between scenes continues in the next one with a copy of its state. Nothing may show where
 // the frame was cut: rasterized after every draw, every built-in scene gives the bytes, the counters
 // and (in provenance mode) the intervals, classes and candidates of the frame as one scene; and a
-// draw of 40,000 triangles cut into three scenes keeps its uniforms and its tile counts, and an upload
+// draw of 40,000 triangles cut between scenes keeps its uniforms and its tile counts, and an upload
 // of the texture it samples still waits for all of its triangles.
 #include <gtest/gtest.h>
 
@@ -107,7 +107,7 @@ CommandList cutTexturedFrame() {
   return cl;
 }
 
-TEST(SceneFlush, ADrawCutIntoThreeScenesKeepsItsUniformsAndCounters) {
+TEST(SceneFlush, ADrawCutBetweenScenesKeepsItsUniformsAndCounters) {
   // 40,000 one-pixel triangles in one flat_color draw (its colour is a uniform): a bound of 16,384
   // set-up triangles cuts it into three scenes; a bound of 1 after every slice (16,384 triangles, or
   // 8,192 at one thread); the default bound at one thread after every 8,192, and not at all with more
