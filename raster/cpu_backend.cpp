@@ -124,9 +124,10 @@ struct AppendArray {
 // Triangles whose setup waits for the next setupPending(). Small draws (a city block: 257 draws of
 // about 80 triangles) then share one parallel setup instead of each running its one chunk on the
 // calling thread; a draw that brings the total to this bound is set up at once, which bounds memory.
-// Large draws go in slices of this size (draw(); kSingleThreadScene at one thread). 16384 keeps a slice's vertices (about 50k, 13 MB of
-// VertexIn + VertexOut) within the last-level cache: tiny_tris_1m took 247 ms at 65536 and 233 ms at
-// 16384, 8192 or 4096 (1 thread); city_block did not change.
+// Large draws go in slices of this size (draw(); kSingleThreadScene at one thread). 16384 keeps a
+// slice's vertices (about 50k, 13 MB of VertexIn + VertexOut) within the last-level cache:
+// tiny_tris_1m took 247 ms at 65536 and 233 ms at 16384, 8192 or 4096 (1 thread, one scene per
+// frame); city_block did not change.
 constexpr size_t kPendingTriangles = 16384;
 
 // The set-up triangles a scene holds before it is rasterized, whatever comes next: a flush for memory.
