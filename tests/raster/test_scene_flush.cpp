@@ -71,8 +71,9 @@ INSTANTIATE_TEST_SUITE_P(AllScenes, SceneFlush, ::testing::ValuesIn([] {
                          [](const auto& param) { return param.param; });
 
 // One flat-coloured triangle, then 40,000 textured triangles of about one pixel in one draw over a
-// 256 x 256 target (three scenes at a bound of 16,384), then the draw's texture uploaded again with other texels, then one more
-// triangle drawn with it. The upload must wait for every triangle of the cut draw, the last scene's too.
+// 256 x 256 target (three scenes at a bound of 16,384), then the draw's texture uploaded again with
+// other texels, then one more triangle drawn with it. The upload must wait for every triangle of the
+// cut draw, the last scene's too.
 CommandList cutTexturedFrame() {
   constexpr int kW = 256, kTris = 40000;
   CommandList cl;
