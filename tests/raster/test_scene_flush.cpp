@@ -17,6 +17,7 @@
 #include "tests/raster/provenance_compare.h"
 #include "tests/raster/render_helpers.h"
 #include "tools/scenes/builder.h"
+#include "tools/scenes/scene_common.h"
 #include "tools/scenes/scenes.h"
 #include "tools/scenes/sweep_scenes.h"
 
@@ -77,11 +78,7 @@ INSTANTIATE_TEST_SUITE_P(AllScenes, SceneFlush, ::testing::ValuesIn([] {
 CommandList cutTexturedFrame() {
   constexpr int kW = 256, kTris = 40000;
   CommandList cl;
-  RenderTarget t;
-  t.color[0] = createTarget(cl, Format::RGBA8, kW, kW);
-  cl.setRenderTarget(t);
-  cl.setViewport({0, 0, kW, kW});
-  cl.clearColor(0, {0, 0, 0, 1});
+  beginFrame(cl, kW, kW, false, {0, 0, 0, 1});
   const RgbaImage before = checker(4, 4, 1, {250, 20, 20, 255}, {20, 250, 20, 255});
   const RgbaImage after = checker(4, 4, 1, {20, 20, 250, 255}, {250, 250, 20, 255});
   const ResourceId tex = uploadTexture(cl, before, false);
