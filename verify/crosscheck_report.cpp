@@ -159,7 +159,10 @@ void writeCrosscheckReport(const CrosscheckResult& result, const std::string& di
         fmt::arg("lforked", j.lookupForked), fmt::arg("lfallbacks", j.lookupFallbacks));
     if (n <= (1u << 20)) {
       std::string classes = "[";
-      for (size_t i = 0; i < n; ++i) classes += (i ? "," : "") + std::to_string(j.classMap[i]);
+      for (size_t i = 0; i < n; ++i) {
+        if (i) classes += ',';  // not (i ? "," : "") + ...: GCC 12 warns falsely there (-Wrestrict, GCC bug 105329)
+        classes += std::to_string(j.classMap[i]);
+      }
       classes += "]";
       data += fmt::format("D[{}]={{w:{},h:{},ch:{},o:{},g:{},lo:{},hi:{},c:{}}};\n", k, j.width, j.height, j.channels,
                           jsonArray(j.format, v.oracle, n), jsonArray(j.format, v.other, n),

@@ -29,7 +29,7 @@ inline batching::TabScene tabInput(const std::vector<TexSpec>& textures, const s
   uint32_t v = 0;
   for (uint32_t i = 0; i < meshes.size(); ++i) {
     batching::TabMesh m;
-    m.name = "m" + std::to_string(i);
+    m.name = std::to_string(i).insert(0, 1, 'm');  // not "m" + ...: GCC 12 warns falsely (-Wrestrict, bug 105329)
     m.modelMesh = i;
     m.textures = meshes[i].textures;
     m.firstVertex = v;
