@@ -1,5 +1,6 @@
 #include "raster/clip.h"
 
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -79,8 +80,12 @@ ClipResult classifyTriangle(const VertexOut* const (&v)[3], uint8_t clipMask) {
     if (sse2) {
       uint32_t m = fixedPlanesOutside(o.pos);
       if (m == kNonFinite) return ClipResult::Outside;
-      for (int k = 0; k < kMaxClipDistances; ++k)
-        if ((clipMask >> k & 1) && !(double(o.clip[k]) >= 0.0)) m |= 1u << (kFixedPlanes + k);
+      // The enabled planes only (usually none): a test of all eight per vertex was a third of this
+      // function's instructions.
+      for (uint32_t planes = clipMask; planes; planes &= planes - 1) {
+        const int k = std::countr_zero(planes);
+        if (!(double(o.clip[k]) >= 0.0)) m |= 1u << (kFixedPlanes + k);
+      }
       out[i] = m;
       continue;
     }

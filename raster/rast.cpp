@@ -136,8 +136,8 @@ class TriangleRasterizer {
         lateDepth_(c.lateDepth), sourceOver_(c.sourceOver), unorm8Quad_(s.unorm8Quad),
         unblendedRgba8_(c.unblendedRgba8), sourceOverRgba8_(c.sourceOverRgba8),
         // The LOD probe shades quad by quad, and a late depth test needs no early one: both stay per quad.
-        gathered_(s.quadDepths && s.quadVaryings && !lateDepth_ && !scene.lod), depth_(c.depth), id_(id),
-        writesDepth_(walk_ != Walk::Owned && c.depthWrite), hizFloor_(occlusionFloor(c)) {
+        gathered_(s.quadDepths && s.quadVaryings && !lateDepth_ && !scene.lod), depth_(c.depth), color_(c.color),
+        id_(id), writesDepth_(walk_ != Walk::Owned && c.depthWrite), hizFloor_(occlusionFloor(c)) {
     beginPlanCache();  // a new triangle: no lambda or plan of another one is reused (sample.h)
     if (gathered_) {
       // The scalar code's conversions of the triangle's constants (rast.h), each exact.
@@ -150,8 +150,6 @@ class TriangleRasterizer {
       plane_.area2 = double(t.area2);
       plane_.varyings = ds_.varyings;
     }
-    // Only the attachments the program writes are ever addressed (flush() loops to colorOutputs).
-    for (int a = 0; a < ds_.colorOutputs; ++a) color_[a] = c.color[a];
   }
 
   // The draw's DrawConsts (rast.h) for triangle t: RastScratch::drawConsts, made again when the draw or
@@ -351,9 +349,10 @@ class TriangleRasterizer {
     const int32_t cy0 = std::max(y0 - by, 0), cy1 = std::min(y1 - by, kBlockSize - 1);
     if (cx0 > cx1 || cy0 > cy1) return 0;
     const uint64_t row = ((uint64_t(2) << cx1) - 1) & ~((uint64_t(1) << cx0) - 1);  // bits cx0..cx1
-    uint64_t m = 0;
-    for (int32_t y = cy0; y <= cy1; ++y) m |= row << (8 * y);
-    return m;
+    // Bit 0 of each of the rows cy0..cy1 (0x01 per byte, as many bytes as rows); times `row` (< 256)
+    // that copies the row into each of them without a carry between bytes.
+    const uint64_t rows = 0x0101010101010101u & (~uint64_t(0) >> (56 - 8 * (cy1 - cy0)));
+    return (row * rows) << (8 * cy0);
   }
 
   // Walk::Visibility's whole work on the block's gathered quads (their depths in s_.z): the early
@@ -613,6 +612,20 @@ class TriangleRasterizer {
         if (scene_.lod) recordLod(q, keep);
         continue;
       }
+      if (keep && unblendedRgba8_ && q.x < xLast_ && q.y < yLast_) {
+        // A partly covered quad inside the target, unblended RGBA8: its kept pixels merged into the two
+        // rows under a mask, with no branch per pixel. The other pixels get their own bytes back: the
+        // tile owns them, and nothing else writes them meanwhile.
+        static constexpr uint64_t kPixels[4] = {0, 0xFFFFFFFFu, 0xFFFFFFFF00000000u, ~uint64_t(0)};
+        static_assert(std::endian::native == std::endian::little, "pixel 0 of a row is its low 4 bytes");
+        const uint64_t m0 = kPixels[keep & 3], m1 = kPixels[keep >> 2];
+        if (depthWrite) mergeRows(depth_, q.x, q.y, z, m0, m1);
+        for (int a = 0; a < ds_.colorOutputs; ++a)
+          if (color_[a].base) mergeRows(color_[a], q.x, q.y, unorm[a], m0, m1);
+        if (!owned) stats_.pixels_written += quadPixels(keep);
+        if (scene_.lod) recordLod(q, keep);
+        continue;
+      }
       for (int p = 0; p < 4; ++p) {
         if (!(keep >> p & 1)) continue;
         const int32_t x = q.x + (p & 1), y = q.y + (p >> 1);
@@ -638,6 +651,18 @@ class TriangleRasterizer {
       s_.ticks.t[kStageFragops] += stageClock() - shade1;
     }
     count_ = 0;
+  }
+
+  // The 8 bytes of each of a quad's two rows in `plane` (at x, y and x, y + 1): those under mask m0 (row
+  // y) and m1 (row y + 1) from src (16 bytes, row y first), the others kept.
+  static void mergeRows(const Plane& plane, int32_t x, int32_t y, const void* src, uint64_t m0, uint64_t m1) {
+    uint64_t s[2], r0, r1;
+    std::memcpy(s, src, sizeof s);
+    std::memcpy(&r0, plane.at(x, y), 8);
+    std::memcpy(&r1, plane.at(x, y + 1), 8);
+    r0 = (r0 & ~m0) | (s[0] & m0), r1 = (r1 & ~m1) | (s[1] & m1);
+    std::memcpy(plane.at(x, y), &r0, 8);
+    std::memcpy(plane.at(x, y + 1), &r1, 8);
   }
 
   // The LOD probe: the kept pixels of the quad just shaded take its lookups (the last write wins).
@@ -681,7 +706,9 @@ class TriangleRasterizer {
   int32_t xLast_ = 0, yLast_ = 0;  // the tile's last column and row (inside the target)
   BlockEdges edges_;  // the coverage kernel's input (raster/coverage_simd.h)
   int64_t quadStep_[3][4];  // setQuadSteps
-  Plane color_[kMaxColorAttachments];
+  // The draw's colour planes, in RastScratch::drawConsts: a walk runs to its end before the next
+  // triangle's may remake them (a copy of them was a sixtieth of a one-pixel triangle's instructions).
+  const Plane* const color_;
   size_t count_ = 0;
   // Visibility and Owned (last, so the immediate walk's members keep their place).
   const uint16_t id_;  // 1 + the triangle's index in its visibility run
