@@ -80,8 +80,8 @@ ClipResult classifyTriangle(const VertexOut* const (&v)[3], uint8_t clipMask) {
     if (sse2) {
       uint32_t m = fixedPlanesOutside(o.pos);
       if (m == kNonFinite) return ClipResult::Outside;
-      // The enabled planes only (usually none): a test of all eight per vertex was a third of this
-      // function's instructions.
+      // The enabled planes only (usually none): testing all eight per vertex was a sixth of this
+      // function's instructions (callgrind: 229 per triangle, 190 without).
       for (uint32_t planes = clipMask; planes; planes &= planes - 1) {
         const int k = std::countr_zero(planes);
         if (!(double(o.clip[k]) >= 0.0)) m |= 1u << (kFixedPlanes + k);

