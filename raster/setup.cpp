@@ -75,13 +75,15 @@ void binTriangle(const WindowVertex& w0, const WindowVertex& w1, const WindowVer
     t.invW[i] = wv[i]->invW;
     t.z[i] = wv[i]->z;
   }
-  for (int i = 0; i < 3 && params.provenance; ++i) {  // read by provenance mode only (TriSetup)
-    const WindowVertex& p = *cyc[i + 1];
-    const WindowVertex& q = *cyc[i + 2];
-    t.vx[i] = wv[i]->x;
-    t.vy[i] = wv[i]->y;
-    t.edgeKind[i] = internalOpp[i] ? kEdgeInternal : (p.original && q.original) ? kEdgeOriginal : kEdgeClipped;
-    t.clipMarginSub[i] = t.edgeKind[i] == kEdgeClipped ? std::max(p.errSub, q.errSub) : 0.0;
+  if (params.provenance) {  // read by provenance mode only (TriSetup)
+    for (int i = 0; i < 3; ++i) {
+      const WindowVertex& p = *cyc[i + 1];
+      const WindowVertex& q = *cyc[i + 2];
+      t.vx[i] = wv[i]->x;
+      t.vy[i] = wv[i]->y;
+      t.edgeKind[i] = internalOpp[i] ? kEdgeInternal : (p.original && q.original) ? kEdgeOriginal : kEdgeClipped;
+      t.clipMarginSub[i] = t.edgeKind[i] == kEdgeClipped ? std::max(p.errSub, q.errSub) : 0.0;
+    }
   }
   for (int i = 0; i < 3; ++i)
     for (int k = 0; k < params.varyings; ++k) t.var[i][k] = wv[i]->var ? float(wv[i]->var[k]) : wv[i]->varF[k];
