@@ -13,7 +13,7 @@
 namespace tessera::detail {
 namespace {
 
-constexpr int kFixedPlanes = 6;
+constexpr int kFixedPlanes = kClipFixedPlanes;
 
 // Signed distance of a vertex to plane `p` (>= 0 inside). Planes 0-5: near, far, the four guard-band
 // sides; 6 + i: user clip distance i. Evaluated in double from float inputs, so the fixed planes
@@ -68,48 +68,42 @@ inline uint32_t fixedPlanesOutside(const Vec4& pos) {
 }
 #endif
 
-ClipResult classifyTriangle(const VertexOut* const (&v)[3], uint8_t clipMask) {
-  // One bit per plane (planeDistance's numbering) that the vertex lies outside of.
-  uint32_t out[3];
+uint32_t classifyVertex(const VertexOut& o, uint8_t clipMask) {
 #if defined(__SSE2__)
-  const bool sse2 = simd::kernelsOn();  // "reference" runs the scalar steps
-#endif
-  for (int i = 0; i < 3; ++i) {
-    const VertexOut& o = *v[i];
-#if defined(__SSE2__)
-    if (sse2) {
-      uint32_t m = fixedPlanesOutside(o.pos);
-      if (m == kNonFinite) return ClipResult::Outside;
-      // The enabled planes only (usually none): testing all eight per vertex was a sixth of this
-      // function's instructions (callgrind: 229 per triangle, 190 without).
-      for (uint32_t planes = clipMask; planes; planes &= planes - 1) {
-        const int k = std::countr_zero(planes);
-        if (!(double(o.clip[k]) >= 0.0)) m |= 1u << (kFixedPlanes + k);
-      }
-      out[i] = m;
-      continue;
+  if (simd::kernelsOn()) {  // "reference" runs the scalar steps
+    uint32_t m = fixedPlanesOutside(o.pos);
+    if (m == kNonFinite) return kClipNonFinite;
+    // The enabled planes only (usually none): testing all eight per vertex was a sixth of
+    // classifyTriangle's instructions (callgrind: 229 per triangle, 190 without).
+    for (uint32_t planes = clipMask; planes; planes &= planes - 1) {
+      const int k = std::countr_zero(planes);
+      if (!(double(o.clip[k]) >= 0.0)) m |= 1u << (kFixedPlanes + k);
     }
-#endif
-    // Non-finite positions (possible only through program arithmetic; validation rejects non-finite
-    // input positions) make the primitive undefined in GL; the oracle discards it.
-    if (!std::isfinite(o.pos[0]) || !std::isfinite(o.pos[1]) || !std::isfinite(o.pos[2]) || !std::isfinite(o.pos[3]))
-      return ClipResult::Outside;
-    const double x = o.pos[0], y = o.pos[1], z = o.pos[2], w = o.pos[3];
-    const double gw = kGuardBand * w;
-    uint32_t m = 0;
-    m |= uint32_t(!(z + w >= 0.0)) << 0;
-    m |= uint32_t(!(w - z >= 0.0)) << 1;
-    m |= uint32_t(!(gw + x >= 0.0)) << 2;
-    m |= uint32_t(!(gw - x >= 0.0)) << 3;
-    m |= uint32_t(!(gw + y >= 0.0)) << 4;
-    m |= uint32_t(!(gw - y >= 0.0)) << 5;
-    // NaN clip distances count as outside: GL leaves them undefined, the oracle drops that side.
-    for (int k = 0; k < kMaxClipDistances; ++k)
-      if ((clipMask >> k & 1) && !(double(o.clip[k]) >= 0.0)) m |= 1u << (kFixedPlanes + k);
-    out[i] = m;
+    return m;
   }
-  if (out[0] & out[1] & out[2]) return ClipResult::Outside;  // all three outside one plane
-  return (out[0] | out[1] | out[2]) ? ClipResult::Clipped : ClipResult::Inside;
+#endif
+  if (!std::isfinite(o.pos[0]) || !std::isfinite(o.pos[1]) || !std::isfinite(o.pos[2]) || !std::isfinite(o.pos[3]))
+    return kClipNonFinite;
+  const double x = o.pos[0], y = o.pos[1], z = o.pos[2], w = o.pos[3];
+  const double gw = kGuardBand * w;
+  uint32_t m = 0;
+  m |= uint32_t(!(z + w >= 0.0)) << 0;
+  m |= uint32_t(!(w - z >= 0.0)) << 1;
+  m |= uint32_t(!(gw + x >= 0.0)) << 2;
+  m |= uint32_t(!(gw - x >= 0.0)) << 3;
+  m |= uint32_t(!(gw + y >= 0.0)) << 4;
+  m |= uint32_t(!(gw - y >= 0.0)) << 5;
+  // NaN clip distances count as outside: GL leaves them undefined, the oracle drops that side.
+  for (int k = 0; k < kMaxClipDistances; ++k)
+    if ((clipMask >> k & 1) && !(double(o.clip[k]) >= 0.0)) m |= 1u << (kFixedPlanes + k);
+  return m;
+}
+
+ClipResult classifyTriangle(const VertexOut* const (&v)[3], uint8_t clipMask) {
+  uint32_t out[3];
+  for (int i = 0; i < 3; ++i)
+    if ((out[i] = classifyVertex(*v[i], clipMask)) == kClipNonFinite) return ClipResult::Outside;
+  return classifyCodes(out[0], out[1], out[2]);
 }
 
 int clipTriangle(const VertexOut (&v)[3], uint8_t clipMask, int varyings, ClipVertex (&out)[kMaxClipPolygon]) {

@@ -26,12 +26,33 @@ constexpr int kMaxClipPolygon = 3 + 6 + kMaxClipDistances;
 
 enum class ClipResult { Inside, Outside, Clipped };
 
+// The planes a vertex lies outside of, one bit each: 0 near (z >= -w), 1 far (z <= w), 2-5 the guard
+// band's x >= -g w, x <= g w, y >= -g w, y <= g w, 6 + i user clip distance i (enabled ones only).
+// "Outside" is !(d >= 0), so a NaN distance is outside.
+constexpr int kClipFixedPlanes = 6;
+constexpr uint32_t kClipFixedPlaneBits = (1u << kClipFixedPlanes) - 1;
+constexpr uint32_t kClipPlaneBits = (1u << (kClipFixedPlanes + kMaxClipDistances)) - 1;
+// Alone, instead of plane bits: a NaN or infinite position coordinate (only program arithmetic makes
+// one; validation rejects non-finite input positions). GL leaves the primitive undefined; the oracle
+// discards it.
+constexpr uint32_t kClipNonFinite = 1u << 31;
+
+// The outcode of one vertex for the user clip distances in clipMask: the six fixed planes in SSE2
+// pairs where available, the scalar steps under the "reference" SIMD target (the same bits).
+uint32_t classifyVertex(const VertexOut& v, uint8_t clipMask);
+
+// A triangle from its vertices' outcodes: Outside if one is kClipNonFinite or all three lie outside
+// one plane, Inside if none lies outside any, Clipped otherwise.
+inline ClipResult classifyCodes(uint32_t c0, uint32_t c1, uint32_t c2) {
+  if (((c0 | c1 | c2) & kClipNonFinite) || (c0 & c1 & c2 & kClipPlaneBits)) return ClipResult::Outside;
+  return ((c0 | c1 | c2) & kClipPlaneBits) ? ClipResult::Clipped : ClipResult::Inside;
+}
+
 // Classifies the triangle. Inside: no plane cuts it (use the original vertices unchanged).
 // Outside: all three vertices lie strictly outside one plane. Otherwise Clipped.
-// The vertices are read in place (setup passes pointers into the vertex stage's output). A vertex
-// with a NaN or infinite position coordinate makes the triangle Outside. The six fixed planes are
-// tested in SSE2 pairs where available, the scalar steps under the "reference" SIMD target (the same
-// results: tests/raster/test_classify.cpp).
+// A vertex with a NaN or infinite position coordinate makes the triangle Outside. classifyCodes of
+// the three classifyVertex codes (tests/raster/test_classify.cpp compares the SSE2 and the scalar
+// steps). Setup classifies from the codes the vertex stage recorded (window_simd.h) instead.
 ClipResult classifyTriangle(const VertexOut* const (&v)[3], uint8_t clipMask);
 inline ClipResult classifyTriangle(const VertexOut (&v)[3], uint8_t clipMask) {
   const VertexOut* const p[3] = {&v[0], &v[1], &v[2]};

@@ -211,6 +211,17 @@ struct CpuBackend::Impl {
   AppendArray<uint32_t> pendingIdx;
   AppendArray<VertexIn> pendingIn;
   AppendArray<VertexOut> pendingOut;
+  // Per vertex of pendingOut, its outcode and window position (window_simd.h), one array per member.
+  struct PendingWindows {
+    AppendArray<int64_t> x, y;
+    AppendArray<double> invW;
+    AppendArray<float> z;
+    AppendArray<uint32_t> code;
+    void append(size_t n) { x.append(n), y.append(n), invW.append(n), z.append(n), code.append(n); }
+    void clear() { x.clear(), y.clear(), invW.clear(), z.clear(), code.clear(); }
+    VertexWindows at(size_t i) { return {x.data.get() + i, y.data.get() + i, invW.data.get() + i, z.data.get() + i,
+                                         code.data.get() + i}; }
+  } pendingWin;
   // Texel and buffer storage of the previous frame (storage_pool.h); what this frame does not take is
   // released when it ends (CpuBackend::execute).
   StoragePool storage;
@@ -511,6 +522,7 @@ struct CpuBackend::Impl {
       // zeroed per group.
       pendingIn.append(shadeCount);
       pendingOut.append(shadeCount);
+      pendingWin.append(shadeCount);
 
       SetupParams& params = pd.params;
       params.viewport = viewport;
@@ -554,6 +566,9 @@ struct CpuBackend::Impl {
     const bool timing = scene.timeStages;
     // Provenance mode's depth signatures (setupPending) read the triangles' VertexIns.
     const bool keepInputs = options.provenance;
+    // What setup needs of each vertex's position (window_simd.h), once per vertex instead of once per
+    // triangle that uses it, and in vector lanes.
+    const WindowVerticesFn windowVertices = windowVerticesKernel();
     tbb::parallel_for(tbb::blocked_range<size_t>(0, vertexChunks.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
       const uint64_t t0 = timing ? stageClock() : 0;
       for (size_t c = r.begin(); c != r.end(); ++c) {
@@ -563,6 +578,7 @@ struct CpuBackend::Impl {
         const uint32_t* const idx = pendingIdx.data.get() + p.idx;
         VertexIn* const in = pendingIn.data.get() + p.vtx + vc.begin;
         VertexOut* const out = pendingOut.data.get() + p.vtx + vc.begin;
+        const VertexWindows win = pendingWin.at(p.vtx + vc.begin);
         const size_t n = vc.end - vc.begin;
         // In groups of kGroup vertices: fetch, clear the outputs (one fill per group: a fill per
         // 128-byte VertexOut compiled to a `rep stos` each, whose start-up cost made it over half of
@@ -584,6 +600,7 @@ struct CpuBackend::Impl {
           fetchGroup(*p.vertexBuffer, p.layout, gin, m);
           std::memset(static_cast<void*>(out + g), 0, m * sizeof(VertexOut));
           ds.program->shadeVertices(std::span<const VertexIn>(gin, m), std::span<VertexOut>(out + g, m), ds.ctx);
+          windowVertices(out + g, m, p.params.viewport, p.params.raster.clipMask, win.at(g));
         }
       }
       if (timing) scratch.local().ticks.t[kStageVertex] += stageClock() - t0;
@@ -618,6 +635,7 @@ struct CpuBackend::Impl {
         const uint32_t* const idx = pendingIdx.data.get() + p.idx;
         const VertexIn* const in = pendingIn.data.get() + p.vtx;
         const VertexOut* const out = pendingOut.data.get() + p.vtx;
+        const VertexWindows win = pendingWin.at(p.vtx);
         SetupSink& sink = sinks[c];
         sink.clear();
         sink.segment = p.segment;
@@ -629,21 +647,32 @@ struct CpuBackend::Impl {
           // The vertices in place; a program with a geometry stage changes its own copies.
           const VertexOut* vp[3];
           const VertexIn* vin[3];
+          size_t vs[3];
           for (int k = 0; k < 3; ++k) {
             const size_t s = p.dense ? idx[3 * t + uint32_t(k)] - p.lo : 3 * t + uint32_t(k);
             vp[k] = &out[s];
             vin[k] = &in[s];
+            vs[k] = s;
           }
           uint32_t layer = 0;
           const uint32_t primitiveId = p.firstTri + t;  // gl_PrimitiveID: the triangle's place in its draw
           VertexOut v[3];
+          // A geometry stage's copies get records of their own (elements 0 to 2).
+          int64_t gx[3], gy[3];
+          double gInvW[3];
+          float gz[3];
+          uint32_t gcode[3];
+          const VertexWindows gwin{gx, gy, gInvW, gz, gcode};
           if (geometryStage) {
             for (int k = 0; k < 3; ++k) v[k] = *vp[k], vp[k] = &v[k];
-          }
-          if (geometryStage && !ds.program->shadeTriangle(v, primitiveId, layer, ds.ctx)) {
-            ++sink.stats.primitives_assembled;
-            ++sink.stats.primitives_dropped_by_program;
-            continue;
+            if (!ds.program->shadeTriangle(v, primitiveId, layer, ds.ctx)) {
+              ++sink.stats.primitives_assembled;
+              ++sink.stats.primitives_dropped_by_program;
+              continue;
+            }
+            // The program moved its copies: their records are made again.
+            windowVerticesReference(v, 3, params.viewport, params.raster.clipMask, gwin);
+            for (int k = 0; k < 3; ++k) vs[k] = size_t(k);
           }
           if (layered) {
             // GL 4.6 §9.8: a layer outside the attachments gives undefined results; the oracle drops
@@ -657,7 +686,7 @@ struct CpuBackend::Impl {
             layer = target.layer;  // gl_Layer is ignored for a non-layered target
           }
           const size_t first = sink.tris.size();
-          setupTriangle(vp, primitiveId, layer, params, sink);
+          setupTriangle(vp, geometryStage ? gwin : win, vs, primitiveId, layer, params, sink);
           if (params.provenance) {
             const uint64_t sig = depthSig(ds, vin, vp, layer);
             for (size_t i = first; i < sink.tris.size(); ++i) sink.tris[i].depthSig = sig;
@@ -676,7 +705,7 @@ struct CpuBackend::Impl {
     }
     pending.clear();
     pendingTris = 0;
-    pendingIdx.clear(), pendingIn.clear(), pendingOut.clear();
+    pendingIdx.clear(), pendingIn.clear(), pendingOut.clear(), pendingWin.clear();
   }
 
   // Takes over the capacity of an earlier frame's backend: the spare triangle blocks, the emptied
@@ -690,7 +719,8 @@ struct CpuBackend::Impl {
     pendingIdx = std::move(old.pendingIdx);
     pendingIn = std::move(old.pendingIn);
     pendingOut = std::move(old.pendingOut);
-    pendingIdx.clear(), pendingIn.clear(), pendingOut.clear();
+    pendingWin = std::move(old.pendingWin);
+    pendingIdx.clear(), pendingIn.clear(), pendingOut.clear(), pendingWin.clear();
     for (auto& t : old.textures)
       if (t)
         for (auto& level : t->levels) storage.give(std::move(level));

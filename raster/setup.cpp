@@ -220,6 +220,24 @@ inline double clipVertexErrorSub(const double pos[4], double mag, const Rect& vp
 
 }  // namespace
 
+void windowVerticesReference(const VertexOut* v, size_t n, const Rect& vp, uint8_t clipMask, const VertexWindows& out) {
+  for (size_t i = 0; i < n; ++i) {
+    out.x[i] = out.y[i] = 0, out.invW[i] = 0.0, out.z[i] = 0.0f;
+    uint32_t code = classifyVertex(v[i], clipMask);
+    if (!(code & (kClipFixedPlaneBits | kClipNonFinite))) {
+      if (v[i].pos[3] > 0.0f) {
+        const double pos[4] = {v[i].pos[0], v[i].pos[1], v[i].pos[2], v[i].pos[3]};
+        const WindowVertex w = toWindow(pos, vp);
+        out.x[i] = w.x, out.y[i] = w.y, out.invW[i] = w.invW, out.z[i] = w.z;
+      } else {
+        // w == 0 passes the fixed planes only at the clip-space origin: no window position.
+        code |= kVertexNoWindow;
+      }
+    }
+    out.code[i] = code;
+  }
+}
+
 void appendToScene(SetupSink& sink, Scene& scene, PipelineStats& stats) {
   stats.add(sink.stats);
   const size_t count = sink.tris.size();
@@ -237,28 +255,31 @@ void appendToScene(SetupSink& sink, Scene& scene, PipelineStats& stats) {
   }
 }
 
-void setupTriangle(const VertexOut* const (&v)[3], uint32_t primitiveId, uint32_t layer, const SetupParams& params,
-                   SetupSink& sink) {
+void setupTriangle(const VertexOut* const (&v)[3], const VertexWindows& win, const size_t (&s)[3],
+                   uint32_t primitiveId, uint32_t layer, const SetupParams& params, SetupSink& sink) {
   PipelineStats& stats = sink.stats;
   ++stats.primitives_assembled;
-  const ClipResult cr = classifyTriangle(v, params.raster.clipMask);
+  const uint32_t code[3] = {win.code[s[0]], win.code[s[1]], win.code[s[2]]};
+  const ClipResult cr = classifyCodes(code[0], code[1], code[2]);
   if (cr == ClipResult::Outside) {
     ++stats.primitives_culled;
     return;
   }
   bool binned = false;
   if (cr == ClipResult::Inside) {
-    WindowVertex w[3];
-    // w == 0 passes every clip plane only at the clip-space origin; the vertex has no window
-    // position, so the primitive is dropped (GL leaves it undefined).
-    if (!(v[0]->pos[3] > 0.0f && v[1]->pos[3] > 0.0f && v[2]->pos[3] > 0.0f)) {
+    // A vertex with w <= 0 has no window position (VertexWindow); GL leaves the primitive undefined
+    // and the oracle drops it.
+    if ((code[0] | code[1] | code[2]) & kVertexNoWindow) {
       ++stats.primitives_culled;
       return;
     }
+    WindowVertex w[3];
     for (int i = 0; i < 3; ++i) {
-      const double pos[4] = {v[i]->pos[0], v[i]->pos[1], v[i]->pos[2], v[i]->pos[3]};
-      w[i] = toWindow(pos, params.viewport);
+      w[i].x = win.x[s[i]], w[i].y = win.y[s[i]], w[i].invW = win.invW[s[i]], w[i].z = win.z[s[i]];
+      w[i].var = nullptr;
       w[i].varF = v[i]->var;
+      w[i].original = true;
+      w[i].errSub = 0.0;
     }
     binTriangle(w[0], w[1], w[2], *v[2], primitiveId, layer, false, params, sink, binned);
   } else {

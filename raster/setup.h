@@ -1,8 +1,10 @@
 // Triangle setup and binning (the "setup" half of the backend, like llvmpipe's lp_setup_tri.c).
 //
-// Implements, per assembled triangle: clipping (clip.h), perspective division and the viewport
-// transform in double (GL 4.6 §13.8), snapping to 8 sub-pixel bits with round-half-to-even, face
-// determination and culling from the snapped signed area (§14.6.1), counter-clockwise ordering,
+// Implements, per vertex (windowVerticesReference, the rule window_simd.h's kernel reproduces): the
+// clip outcode (clip.h), perspective division and the viewport transform in double (GL 4.6 §13.8)
+// and snapping to 8 sub-pixel bits with round-half-to-even. Per assembled triangle: classification
+// from the three outcodes, clipping (clip.h) and the same transform of the vertices clipping makes,
+// face determination and culling from the snapped signed area (§14.6.1), counter-clockwise ordering,
 // int64 edge functions with the left/bottom fill rule, the pixel bounding box clamped to
 // viewport ∩ scissor ∩ target, and binning into every 64x64 tile the triangle can touch.
 // Does not implement: vertex shading or pixel work.
@@ -10,6 +12,7 @@
 
 #include "raster/clip.h"
 #include "raster/pipeline.h"
+#include "raster/window_simd.h"
 
 namespace tessera::detail {
 
@@ -46,9 +49,11 @@ struct SetupSink {
 };
 
 // Sets up one triangle (after the vertex/geometry stages) and records what survives in `sink`. The
-// vertices are read in place: most triangles need no copy of their 128-byte VertexOuts.
-void setupTriangle(const VertexOut* const (&v)[3], uint32_t primitiveId, uint32_t layer, const SetupParams& params,
-                   SetupSink& sink);
+// vertices are read in place: most triangles need no copy of their 128-byte VertexOuts. Vertex i's
+// record (window_simd.h, for params.viewport and params.raster.clipMask) is element s[i] of win: the
+// triangle is classified from their outcodes, and an unclipped one takes their window positions.
+void setupTriangle(const VertexOut* const (&v)[3], const VertexWindows& win, const size_t (&s)[3],
+                   uint32_t primitiveId, uint32_t layer, const SetupParams& params, SetupSink& sink);
 
 // Appends a sink's triangles to the scene and its bins, in order, and adds its stats. The triangles
 // move into the scene as one block (Scene::triBlocks), leaving the sink's vector empty.

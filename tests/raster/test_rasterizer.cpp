@@ -5,9 +5,11 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <string>
 
 #include "raster/fragops.h"
 #include "raster/setup.h"
+#include "raster/simd_targets.h"
 #include "tests/raster/render_helpers.h"
 #include "tools/scenes/builder.h"
 #include "tools/scenes/scenes.h"
@@ -184,6 +186,39 @@ TEST(Clipping, PixelsTwoPixelsInsideEveryPlaneAreDrawnAndTwoPixelsOutsideAnyPlan
     }
     for (int y = 131; y < 192; ++y) ASSERT_TRUE(isClear(x, y)) << "sky pixel " << x << "," << y << " was drawn";
   }
+}
+
+// w = 0 passes every clip plane only at the clip-space origin (x = y = z = w = 0), where the vertex has
+// no window position: GL leaves such a primitive undefined, and the oracle drops it unclipped
+// (raster/window_simd.h, kVertexNoWindow). The matrix maps (x, y, 0) to clip (x, y, 0, x + y), so the
+// vertex at the object origin lands on the clip origin and the other two at NDC (1, 0) and (0, 1).
+TEST(Clipping, AnUnclippedTriangleWithAVertexAtTheClipOriginIsCulled) {
+  Mesh m;
+  m.triangle(v(0.0f, 0.0f), v(1.0f, 0.0f), v(0.0f, 1.0f));
+  CommandList cl;
+  RenderTarget t;
+  t.color[0] = createTarget(cl, Format::RGBA8, 16, 16);
+  cl.setRenderTarget(t);
+  cl.setViewport({0, 0, 16, 16});
+  cl.clearColor(0, {0, 0, 0, 0});
+  const uint32_t n = bindMesh(cl, m);
+  cl.useProgram(cl.createProgram("flat_color"));
+  glm::mat4 toOrigin(0.0f);  // column-major: column c is the image of axis c
+  toOrigin[0] = {1.0f, 0.0f, 0.0f, 1.0f};
+  toOrigin[1] = {0.0f, 1.0f, 0.0f, 1.0f};
+  setMatrix(cl, 0, toOrigin);
+  setVec4(cl, 4, {1.0f, 1.0f, 1.0f, 1.0f});
+  cl.drawIndexed(0, n);
+  for (const std::string& target : simd::availableTargets()) {  // the kernel's records and the reference's
+    simd::forceTarget(target);
+    const auto r = renderList(cl, 1);
+    EXPECT_EQ(r.stats.primitives_assembled, 1u) << target;
+    EXPECT_EQ(r.stats.primitives_clipped, 0u) << target;
+    EXPECT_EQ(r.stats.primitives_culled, 1u) << target;
+    for (int y = 0; y < 16; ++y)
+      for (int x = 0; x < 16; ++x) ASSERT_EQ(red(r.images[0], 16, 16, x, y), 0) << target << ": " << x << "," << y;
+  }
+  simd::forceTarget("best");
 }
 
 TEST(Snapping, RoundsHalfToEven) {
