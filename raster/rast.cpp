@@ -141,9 +141,11 @@ class TriangleRasterizer {
     beginPlanCache();  // a new triangle: no lambda or plan of another one is reused (sample.h)
     if (gathered_) {
       // The scalar code's conversions of the triangle's constants (rast.h), each exact.
+      // (A fixed-size copy: element by element, GCC 12 made it a library call, as the two may alias.)
+      static_assert(sizeof plane_.invW == sizeof t.invW);
+      std::memcpy(plane_.invW, t.invW, sizeof plane_.invW);
       for (int i = 0; i < 3; ++i) {
         plane_.z[i] = double(t.z[i]);
-        plane_.invW[i] = t.invW[i];
         if constexpr (walk_ != Walk::Visibility)  // Visibility interpolates depth only
           for (int k = 0; k < ds_.varyings; ++k) plane_.var[i][k] = double(t.var[i][k]);
       }
