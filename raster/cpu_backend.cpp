@@ -645,15 +645,9 @@ struct CpuBackend::Impl {
         const uint32_t t1 = std::min<uint32_t>(p.triCount, t0 + uint32_t(kSetupChunk));
         for (uint32_t t = t0; t < t1; ++t) {
           // The vertices in place; a program with a geometry stage changes its own copies.
-          const VertexOut* vp[3];
-          const VertexIn* vin[3];
-          size_t vs[3];
-          for (int k = 0; k < 3; ++k) {
-            const size_t s = p.dense ? idx[3 * t + uint32_t(k)] - p.lo : 3 * t + uint32_t(k);
-            vp[k] = &out[s];
-            vin[k] = &in[s];
-            vs[k] = s;
-          }
+          size_t vs[3];  // the vertices' places in the slice's arrays
+          for (int k = 0; k < 3; ++k) vs[k] = p.dense ? idx[3 * t + uint32_t(k)] - p.lo : 3 * t + uint32_t(k);
+          const VertexOut* vp[3] = {&out[vs[0]], &out[vs[1]], &out[vs[2]]};
           uint32_t layer = 0;
           const uint32_t primitiveId = p.firstTri + t;  // gl_PrimitiveID: the triangle's place in its draw
           VertexOut v[3];
@@ -672,7 +666,6 @@ struct CpuBackend::Impl {
             }
             // The program moved its copies: their records are made again.
             windowVerticesReference(v, 3, params.viewport, params.raster.clipMask, gwin);
-            for (int k = 0; k < 3; ++k) vs[k] = size_t(k);
           }
           if (layered) {
             // GL 4.6 §9.8: a layer outside the attachments gives undefined results; the oracle drops
@@ -686,8 +679,10 @@ struct CpuBackend::Impl {
             layer = target.layer;  // gl_Layer is ignored for a non-layered target
           }
           const size_t first = sink.tris.size();
-          setupTriangle(vp, geometryStage ? gwin : win, vs, primitiveId, layer, params, sink);
+          static constexpr size_t kCopies[3] = {0, 1, 2};
+          setupTriangle(vp, geometryStage ? gwin : win, geometryStage ? kCopies : vs, primitiveId, layer, params, sink);
           if (params.provenance) {
+            const VertexIn* vin[3] = {&in[vs[0]], &in[vs[1]], &in[vs[2]]};
             const uint64_t sig = depthSig(ds, vin, vp, layer);
             for (size_t i = first; i < sink.tris.size(); ++i) sink.tris[i].depthSig = sig;
           }
