@@ -30,7 +30,7 @@ struct Records {
   VertexWindows view() { return {x.data(), y.data(), invW.data(), z.data(), code.data()}; }
 };
 
-std::vector<float> interestingValues() {
+std::vector<float> specialPositionValues() {
   const float inf = std::numeric_limits<float>::infinity();
   std::vector<float> v = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, -0.5f, 2.0f, -2.0f, 16.0f, -16.0f, 1e-30f, -1e-30f,
                           1e30f, -1e30f, std::numeric_limits<float>::max(), -std::numeric_limits<float>::max(),
@@ -72,7 +72,7 @@ Rect randomViewport(std::mt19937& rng) {
 }
 
 TEST(SimdWindow, EveryTargetGivesTheReferenceRecordForEveryVertex) {
-  const std::vector<float> values = interestingValues();
+  const std::vector<float> values = specialPositionValues();
   const std::vector<std::string> targets = simd::availableTargets();
   std::mt19937 rng(11);
   size_t placed = 0, noWindow = 0, nonFinite = 0, clipBits = 0, clamped = 0;
