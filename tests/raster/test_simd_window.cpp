@@ -15,6 +15,7 @@
 #include "raster/limits.h"
 #include "raster/simd_targets.h"
 #include "raster/window_simd.h"
+#include "tests/raster/render_helpers.h"
 
 namespace tessera::detail {
 namespace {
@@ -74,6 +75,7 @@ Rect randomViewport(std::mt19937& rng) {
 TEST(SimdWindow, EveryTargetGivesTheReferenceRecordForEveryVertex) {
   const std::vector<float> values = specialPositionValues();
   const std::vector<std::string> targets = simd::availableTargets();
+  const tessera::testing::SimdTargetGuard guard;  // the best target again, however the test ends
   std::mt19937 rng(11);
   size_t placed = 0, noWindow = 0, nonFinite = 0, clipBits = 0, clamped = 0;
   for (int iter = 0; iter < 3000; ++iter) {
@@ -119,7 +121,6 @@ TEST(SimdWindow, EveryTargetGivesTheReferenceRecordForEveryVertex) {
       ASSERT_EQ(got.code[n], 0xdeadbeefu) << target;
     }
   }
-  simd::forceTarget("best");
   // The cases above reach every kind of record.
   EXPECT_GT(placed, 10000u);
   EXPECT_GT(noWindow, 1000u);
@@ -136,6 +137,7 @@ TEST(SimdWindow, ARecordIsTheSnappedViewportTransform) {
   v[0].pos = {0.5f, -0.25f, 0.5f, 1.0f};    // inside
   v[1].pos = {40.0f, 0.0f, 0.0f, 1.0f};     // outside the guard band (x > 16 w)
   v[2].pos = {0.0f, 0.0f, 0.0f, 0.0f};      // the clip-space origin: no window position
+  const tessera::testing::SimdTargetGuard guard;
   for (const std::string& target : simd::availableTargets()) {
     simd::forceTarget(target);
     Records r(3);
@@ -149,7 +151,6 @@ TEST(SimdWindow, ARecordIsTheSnappedViewportTransform) {
     EXPECT_EQ(r.code[1], 1u << 3) << target;  // plane 3: x <= 16 w
     EXPECT_EQ(r.code[2], kVertexNoWindow) << target;
   }
-  simd::forceTarget("best");
 }
 
 }  // namespace
