@@ -87,6 +87,10 @@ def main():
     # A binary given twice (an A/A run, to see the noise floor) is told apart by its position.
     labels = [arg if a.binaries.count(arg) == 1 else f"#{i + 1} {arg}" for i, arg in enumerate(a.binaries)]
     bins = [(label, *parse_binary(arg)) for label, arg in zip(labels, a.binaries)]
+    if a.json:  # checked before the rounds, which take minutes
+        out_dir = os.path.dirname(os.path.abspath(a.json))
+        if not os.path.isdir(out_dir) or not os.access(out_dir, os.W_OK):
+            sys.exit(f"paired_bench.py: --json {a.json}: the directory {out_dir} does not exist or is not writable")
     times = {label: [] for label, _, _ in bins}  # per binary: per round {benchmark: ms}
     for r in range(a.rounds):
         for arg, env, path in bins:
