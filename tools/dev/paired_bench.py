@@ -22,7 +22,6 @@ import argparse
 import json
 import os
 import re
-import shutil
 import statistics
 import subprocess
 import sys
@@ -121,7 +120,7 @@ def main():
             json.dump({"filter": a.filter, "repetitions": a.repetitions, "rounds": times, "summary": summary}, f, indent=1)
             f.flush()
             os.fsync(f.fileno())
-        shutil.move(tmp, a.json)  # a rename: a half-written file never has the final name
+        os.replace(tmp, a.json)  # a rename: a half-written file never has the final name
 
 
 if __name__ == "__main__":
