@@ -121,6 +121,7 @@ bool allRgba8(const Scene& scene, const DrawState& ds) {
 // only on its quad's four interpolated positions, which do not depend on the live mask (helper pixels
 // are computed the same way).
 enum class Walk : uint8_t { Immediate, Visibility, Owned };
+static_assert(size_t(Walk::Owned) + 1 == std::size(DrawConsts{}.edgesRead), "DrawConsts has an entry per walk");
 
 // One class per walk (a template parameter, so the immediate walk carries no test of it).
 template <Walk walk_>
@@ -136,7 +137,8 @@ class TriangleRasterizer {
         lateDepth_(c.lateDepth), sourceOver_(c.sourceOver), unorm8Quad_(s.unorm8Quad),
         unblendedRgba8_(c.unblendedRgba8), sourceOverRgba8_(c.sourceOverRgba8),
         // The LOD probe shades quad by quad, and a late depth test needs no early one: both stay per quad.
-        gathered_(s.quadDepths && s.quadVaryings && !lateDepth_ && !scene.lod), depth_(c.depth), color_(c.color),
+        gathered_(s.quadDepths && s.quadVaryings && !lateDepth_ && !scene.lod),
+        needDepths_(c.depthsRead[size_t(walk_)]), edgesRead_(c.edgesRead[size_t(walk_)]), depth_(c.depth), color_(c.color),
         id_(id), writesDepth_(walk_ != Walk::Owned && c.depthWrite), hizFloor_(occlusionFloor(c)) {
     beginPlanCache();  // a new triangle: no lambda or plan of another one is reused (sample.h)
     if (gathered_) {
@@ -167,6 +169,15 @@ class TriangleRasterizer {
     c.unblendedRgba8 = !ds.blend.enabled && allRgba8(scene, ds);
     c.sourceOverRgba8 = c.sourceOver && allRgba8(scene, ds);
     const bool depthTest = ds.depth.test && tv.depth;
+    // Quad::z is read by the early depth test and the depth writes (Visibility's in a visibility run,
+    // which walks a block without a depth test through visibleBlock instead), and by a program that
+    // reads gl_FragCoord.z; nothing else reads it (runGathered).
+    const bool fragDepth = ds.program->readsFragDepth();
+    for (Walk w : {Walk::Immediate, Walk::Visibility, Walk::Owned}) {
+      const size_t k = size_t(w);
+      c.depthsRead[k] = w == Walk::Visibility || (w == Walk::Immediate && depthTest) || fragDepth;
+      c.edgesRead[k] = c.depthsRead[k] || ds.varyings > 0;
+    }
     c.depthWrite = depthTest && ds.depth.write;
     // See occlusionFloor.
     c.hizEligible = !c.lateDepth && s.quadDepths && !scene.provenance && tv.layer != kLayered && depthTest &&
@@ -206,8 +217,12 @@ class TriangleRasterizer {
     setQuadSteps();
     for (size_t j = 0; j < n; ++j) {
       const RastScratch::OwnedQuad& oq = quads[j];
-      const int64_t eq[3] = {edgeAt(0, oq.x, oq.y), edgeAt(1, oq.x, oq.y), edgeAt(2, oq.x, oq.y)};
-      gather(oq.x, oq.y, oq.mask, eq);
+      if (edgesRead_) {
+        const int64_t eq[3] = {edgeAt(0, oq.x, oq.y), edgeAt(1, oq.x, oq.y), edgeAt(2, oq.x, oq.y)};
+        gather(oq.x, oq.y, oq.mask, eq);
+      } else {
+        gatherQuad(oq.x, oq.y, oq.mask);
+      }
       if (pending_ == QuadPixels::kMax / 4) runGathered();
     }
     runGathered();
@@ -301,7 +316,16 @@ class TriangleRasterizer {
     }
     // The quads with a covered pixel, as the bit of their pixel 0 (8 ry + rx, ry and rx even), visited in
     // increasing order: row by row, left to right.
-    for (uint64_t quads = (mask | mask >> 1 | mask >> 8 | mask >> 9) & 0x0055005500550055u; quads; quads &= quads - 1) {
+    const uint64_t firstPixels = (mask | mask >> 1 | mask >> 8 | mask >> 9) & 0x0055005500550055u;
+    if (gathered_ && !edgesRead_) {  // the same walk, without the edge values nothing reads (gather)
+      for (uint64_t quads = firstPixels; quads; quads &= quads - 1) {
+        const int bit = std::countr_zero(quads);
+        const uint64_t bits = mask >> bit;
+        gatherQuad(bx + (bit & 7), by + (bit >> 3), uint8_t((bits & 3) | (bits >> 8 & 3) << 2));
+      }
+      return runGathered();
+    }
+    for (uint64_t quads = firstPixels; quads; quads &= quads - 1) {
       const int bit = std::countr_zero(quads);
       const int ry = bit >> 3, rx = bit & 7;
       // Quad pixel p = x + 2 y is bit 8 (ry + y) + rx + x of the mask.
@@ -500,9 +524,13 @@ class TriangleRasterizer {
 
   // Appends a covered quad of the block to the kernels' input (RastScratch::px, pixel 4 j + p), from
   // the edge values eq at its pixel 0: four consecutive values per edge, which compile to vector adds.
+  // Only the depth and varying kernels read them (runGathered): a draw with neither, such as a flat
+  // colour without a depth test, appends the quad alone with gatherQuad (edgesRead_; about 34 of a
+  // one-pixel triangle's 1,900 instructions, callgrind).
+  void gatherQuad(int32_t qx, int32_t qy, uint8_t cov) { s_.pending[pending_++] = {qx, qy, cov}; }
   void gather(int32_t qx, int32_t qy, uint8_t cov, const int64_t (&eq)[3]) {
-    const size_t j = pending_++;
-    s_.pending[j] = {qx, qy, cov};
+    const size_t j = pending_;
+    gatherQuad(qx, qy, cov);
     for (int i = 0; i < 3; ++i) {
       int64_t* dst = s_.px.e[i] + 4 * j;
       for (int p = 0; p < 4; ++p) dst[p] = eq[i] + quadStep_[i][p];
@@ -520,15 +548,13 @@ class TriangleRasterizer {
     // The block's quads go into one batch (batches are only a grouping of program calls).
     if (count_ + np > RastScratch::kBatch) flush();
     QuadPixels& px = s_.px;
-    // Quad::z is read by the early depth test and the depth writes (Visibility's in a visibility run,
-    // which walks a block without a depth test through visibleBlock instead), and by a program that
-    // reads gl_FragCoord.z; nothing else reads it (the LOD probe and a program writing gl_FragDepth
-    // take quad(), provenance mode its own walk). Without those its interpolation is skipped (a third
-    // of a one-pixel triangle's interpolation and conversion work), and the quads' z stays whatever
-    // an earlier batch left: never read.
+    // Quad::z is read by the early depth test and the depth writes, and by a program that reads
+    // gl_FragCoord.z (DrawConsts::depthsRead); nothing else reads it (the LOD probe and a program
+    // writing gl_FragDepth take quad(), provenance mode its own walk). Without those its interpolation
+    // is skipped (a third of a one-pixel triangle's interpolation and conversion work), and the quads'
+    // z stays whatever an earlier batch left: never read.
     const bool depthTest = ds_.depth.test && scene_.target.depth;
-    const bool needDepths = walk_ == Walk::Visibility || (walk_ == Walk::Immediate && depthTest) ||
-                            ds_.program->readsFragDepth();
+    const bool needDepths = needDepths_;
     if (needDepths) s_.quadDepths(px, 4 * np, plane_, s_.z);
     if constexpr (walk_ == Walk::Visibility) return recordVisible(np);
     size_t kept = 0;
@@ -742,6 +768,8 @@ class TriangleRasterizer {
   const bool unblendedRgba8_;  // no blending, and every written attachment is RGBA8 or absent
   const bool sourceOverRgba8_;  // source-over blending, and every written attachment is RGBA8 or absent
   const bool gathered_;  // blocks' quads go through the interpolation kernels (runGathered)
+  const bool needDepths_;  // DrawConsts::depthsRead of this walk: runGathered interpolates Quad::z
+  const bool edgesRead_;   // DrawConsts::edgesRead of this walk: gather makes the quads' edge values
   const Plane depth_;
   // Not value-initialised: zeroing it (with the rest of the object, a `rep stos` of about 1 KB per
   // triangle) was 15 % of a one-pixel triangle's walk. The constructor sets what the kernels read (the

@@ -60,6 +60,10 @@ struct DrawConsts {
   bool sourceOverRgba8 = false;  // source-over blending, every written attachment RGBA8 or absent
   bool depthWrite = false;      // the depth test is on with a depth target, and depth writes are on
   bool hizEligible = false;     // the hierarchical Z may skip blocks (rast.cpp, occlusionFloor)
+  // Per walk of rast.cpp (Immediate, Visibility, Owned): the gathered quads' depths are interpolated,
+  // and their edge values are read (by the depth or the varyings kernel). Made once per draw, not per
+  // triangle.
+  bool depthsRead[3] = {}, edgesRead[3] = {};
   AttachmentPlane depth, color[kMaxColorAttachments];
 };
 
