@@ -36,7 +36,8 @@ const TextureData* findTexture(const CpuBackend& b, Format f, uint32_t w) {
 // An 8x8 one-layer layered target (RGBA8 + RG32F + D32F) and one quad through atlas_capture with an
 // identity record (layer 0, no displacement) and an identity MVP: the quad's clip position is its
 // attribute, so window depth = z / 2 + 1/2. Corner z values z0..z3 (counter-clockwise from (-1, -1)).
-CommandList captureQuad(float z0, float z1, float z2, float z3) {
+// `depthTest` false draws with the depth test off, where only the program reads the depth.
+CommandList captureQuad(float z0, float z1, float z2, float z3, bool depthTest = true) {
   CommandList cl;
   TextureDesc d;
   d.kind = TextureKind::Tex2DArray;
@@ -72,7 +73,7 @@ CommandList captureQuad(float z0, float z1, float z2, float z3) {
   setMatrix(cl, 0, glm::mat4(1.0f));
   setVec4(cl, 7, {1, 1, 1, 1});
   DepthState ds;
-  ds.test = true;
+  ds.test = depthTest;
   cl.setDepthState(ds);
   cl.drawIndexed(0, n);
   return cl;
@@ -168,6 +169,33 @@ TEST(FragCoordZ, AFlatQuadAtNdcDepthOneHalfReadsWindowDepthThreeQuarters) {
       EXPECT_EQ(texelF(*rg, 0, x, y, 0), 0.75f) << x << "," << y;
       EXPECT_EQ(texelF(*rg, 0, x, y, 1), 1.0f) << x << "," << y;
     }
+}
+
+TEST(FragCoordZ, AProgramReadsGlFragCoordZWithTheDepthTestOffAndTheDepthBufferKeepsItsClear) {
+  // gl_FragCoord.z does not depend on the depth test (GL 4.6 §15.2.2); with the test disabled nothing
+  // is written to the depth buffer (§17.3.4). The rasterizer must still interpolate the depth for the
+  // program (DrawConsts::depthsRead), which no other frame exercises without a depth test.
+  CpuBackend b(RenderOptions{2});
+  b.execute(captureQuad(0.5f, 0.5f, 0.5f, 0.5f, false), "flat, no depth test");
+  const TextureData* rg = findTexture(b, Format::RG32F, 8);
+  const TextureData* dz = findTexture(b, Format::D32F, 8);
+  ASSERT_TRUE(rg && dz);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) {
+      EXPECT_EQ(texelF(*rg, 0, x, y, 0), 0.75f) << x << "," << y;
+      EXPECT_EQ(texelF(*rg, 0, x, y, 1), 1.0f) << x << "," << y;
+      EXPECT_EQ(texelF(*dz, 0, x, y, 0), 1.0f) << x << "," << y;
+    }
+  // A sloped quad reads the same depths as with the test on (where every pixel passes over the clear).
+  CpuBackend on(RenderOptions{2}), off(RenderOptions{2});
+  on.execute(captureQuad(-0.8f, 0.1f, 0.7f, -0.2f), "sloped, depth test");
+  off.execute(captureQuad(-0.8f, 0.1f, 0.7f, -0.2f, false), "sloped, no depth test");
+  const TextureData* rgOn = findTexture(on, Format::RG32F, 8);
+  const TextureData* rgOff = findTexture(off, Format::RG32F, 8);
+  ASSERT_TRUE(rgOn && rgOff);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x)
+      for (int c = 0; c < 2; ++c) EXPECT_EQ(texelF(*rgOff, 0, x, y, c), texelF(*rgOn, 0, x, y, c)) << x << "," << y;
 }
 
 TEST(FragDepth, AWrittenFragmentDepthDecidesTheDepthTestNotTheDrawOrder) {
