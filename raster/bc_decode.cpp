@@ -92,9 +92,11 @@ void decodeBc3Block(const uint8_t* block, uint8_t* out) {
   decodeAlpha(block, out);
 }
 
-std::vector<uint8_t> decodeBcLevel(BcFormat f, uint32_t w, uint32_t h, std::span<const uint8_t> blocks) {
+void decodeBcLevelInto(BcFormat f, uint32_t w, uint32_t h, std::span<const uint8_t> blocks, std::span<uint8_t> out) {
   checkLevel("decodeBcLevel", f, w, h, blocks);
-  std::vector<uint8_t> out(size_t(w) * h * 4);
+  if (out.size() != size_t(w) * h * 4)
+    throw Error("decodeBcLevel: a " + std::to_string(w) + "x" + std::to_string(h) + " level decodes to " +
+                std::to_string(size_t(w) * h * 4) + " bytes, but the output holds " + std::to_string(out.size()));
   const uint32_t bw = (w + 3) / 4, bh = (h + 3) / 4, bytes = bcBlockBytes(f);
   uint8_t texels[64];
   for (uint32_t by = 0; by < bh; ++by)
@@ -106,6 +108,12 @@ std::vector<uint8_t> decodeBcLevel(BcFormat f, uint32_t w, uint32_t h, std::span
         for (uint32_t x = 0; x < 4 && 4 * bx + x < w; ++x)
           std::memcpy(out.data() + ((size_t(4 * by + y) * w) + 4 * bx + x) * 4, texels + 4 * (4 * y + x), 4);
     }
+}
+
+std::vector<uint8_t> decodeBcLevel(BcFormat f, uint32_t w, uint32_t h, std::span<const uint8_t> blocks) {
+  checkLevel("decodeBcLevel", f, w, h, blocks);
+  std::vector<uint8_t> out(size_t(w) * h * 4);
+  decodeBcLevelInto(f, w, h, blocks, out);
   return out;
 }
 

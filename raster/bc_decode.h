@@ -50,6 +50,10 @@ void decodeBc3Block(const uint8_t* block, uint8_t* out);
 // Decodes a w x h level into tightly packed RGBA8 rows in the blocks' row order.
 // Precondition: blocks.size() == bcLevelBytes(f, w, h) (Error otherwise), w and h >= 1.
 std::vector<uint8_t> decodeBcLevel(BcFormat f, uint32_t w, uint32_t h, std::span<const uint8_t> blocks);
+// The same into `out`, which must hold exactly w * h * 4 bytes (Error otherwise): a backend decodes
+// straight into the texture's level, without a temporary level-sized buffer (under ASan every such
+// buffer above the mmap threshold was a fresh mapping, zeroed, faulted in and unmapped per upload).
+void decodeBcLevelInto(BcFormat f, uint32_t w, uint32_t h, std::span<const uint8_t> blocks, std::span<uint8_t> out);
 
 // Which channels of each texel of that level are interpolants, whose rounding the extension leaves free
 // (the cross-check widens exactly those by one unit, BC_INTERPOLANT): per texel a mask, bits 0..2 for RGB

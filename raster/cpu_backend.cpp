@@ -767,8 +767,10 @@ struct CpuBackend::Impl {
       // S3TC blocks: decoded once here by the documented rule (bc_decode.h, spec-choices C1-C4); sampling
       // then reads RGBA8 like any other texture.
       const uint32_t w = levelWidth(t.desc, c.level), h = levelHeight(t.desc, c.level);
-      const std::vector<uint8_t> texels = decodeBcLevel(t.desc.compression, w, h, src);
-      std::memcpy(t.levels[c.level].data() + bytes * c.layer, texels.data(), texels.size());
+      // Straight into the level: a temporary level-sized buffer was a fresh zeroed mapping per upload
+      // under ASan (CONTRIBUTING.md, "Tests").
+      uint8_t* const texels = t.levels[c.level].data() + bytes * c.layer;
+      decodeBcLevelInto(t.desc.compression, w, h, src, std::span<uint8_t>(texels, size_t(bytes)));
       if (options.provenance) {
         // GL may round each interpolant to either integer around the extension's exact value, which is
         // within one unit of the oracle's nearest (docs/crosscheck.md, BC_INTERPOLANT): those channels get

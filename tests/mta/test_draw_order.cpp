@@ -120,10 +120,12 @@ const TextureData& attachment(const CpuBackend& b, const CommandList& cl, bool d
   throw Error("the frame sets no render target");
 }
 
-// Records and runs frames the way TreeRenderer does; one backend and one list for every frame (a backend
-// keeps only memory from frame to frame).
+// Records and runs frames the way TreeRenderer does, one list for every frame. A backend keeps only
+// memory from frame to frame (StoragePool: the previous frame's storage), so the id frames, which have
+// no atlas textures, get a backend of their own: sharing one, every colour frame allocated its atlases
+// afresh, and under ASan each fresh mapping is zeroed, faulted in and unmapped (CONTRIBUTING.md).
 struct Runner {
-  CpuBackend backend{RenderOptions{2, false}};
+  CpuBackend backend{RenderOptions{2, false}}, idBackend{RenderOptions{2, false}};
   RecordedFrame frame;
 
   Executed run(const PagingFile& file, const RuntimeGeometry& geometry, TextureCache& textures, const FramePlan& p,
@@ -141,8 +143,8 @@ struct Runner {
     e.depth = attachment(backend, frame.list, true).levels[0];
     rp.idFrame = true;
     recordFrame(file.meta(), geometry, p, v, textures, rp, frame);
-    backend.execute(frame.list);
-    e.ids = attachment(backend, frame.list, false).levels[0];
+    idBackend.execute(frame.list);
+    e.ids = attachment(idBackend, frame.list, false).levels[0];
     return e;
   }
 };

@@ -106,5 +106,31 @@ TEST(BcDecode, ALevelOfTheWrongByteCountIsRefusedNamingTheSizes) {
   }
 }
 
+TEST(BcDecode, DecodingIntoALevelGivesTheSameBytesAndTouchesNothingOutsideIt) {
+  // The backend decodes straight into a texture's level (cpu_backend.cpp); 5 x 3 leaves partial blocks.
+  std::vector<uint8_t> blocks(bcLevelBytes(BcFormat::BC3, 5, 3));
+  for (size_t i = 0; i < blocks.size(); ++i) blocks[i] = uint8_t(i * 37 + 11);
+  const std::vector<uint8_t> expected = decodeBcLevel(BcFormat::BC3, 5, 3, blocks);
+  std::vector<uint8_t> storage(8 + expected.size() + 8, 0xA5);
+  decodeBcLevelInto(BcFormat::BC3, 5, 3, blocks, std::span<uint8_t>(storage.data() + 8, expected.size()));
+  EXPECT_EQ(std::vector<uint8_t>(storage.begin() + 8, storage.end() - 8), expected);
+  for (size_t i = 0; i < 8; ++i) {
+    EXPECT_EQ(storage[i], 0xA5) << i;
+    EXPECT_EQ(storage[storage.size() - 1 - i], 0xA5) << i;
+  }
+}
+
+TEST(BcDecode, AnOutputOfTheWrongSizeIsRefusedNamingBothSizes) {
+  const std::vector<uint8_t> blocks(16, 0);
+  std::vector<uint8_t> out(15);
+  try {
+    decodeBcLevelInto(BcFormat::BC3, 2, 2, blocks, out);
+    FAIL() << "decoded a 2x2 level into 15 bytes";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("2x2 level decodes to 16 bytes, but the output holds 15"), std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace tessera
