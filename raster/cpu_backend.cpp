@@ -768,7 +768,7 @@ struct CpuBackend::Impl {
       // then reads RGBA8 like any other texture.
       const uint32_t w = levelWidth(t.desc, c.level), h = levelHeight(t.desc, c.level);
       // Straight into the level: a temporary level-sized buffer was a fresh zeroed mapping per upload
-      // under ASan (CONTRIBUTING.md, "Tests").
+      // under ASan (CONTRIBUTING.md, "CI").
       uint8_t* const texels = t.levels[c.level].data() + bytes * c.layer;
       decodeBcLevelInto(t.desc.compression, w, h, src, std::span<uint8_t>(texels, size_t(bytes)));
       if (options.provenance) {
