@@ -10,8 +10,6 @@
 // Implements: the interface below (no OIIO type crosses it), and api(), which loads the module on the
 // first call (thread-safe) from TESSERA_IMAGE_MODULE if set, else from the path the build wrote into
 // the binary, else from beside the executable. The module itself is raster/image_module_oiio.cpp.
-// In the sanitizer build (TESSERA_SANITIZE) its code is linked in instead and OIIO loads at start,
-// because LeakSanitizer's exit check races with a dlopened OIIO (raster/CMakeLists.txt).
 // Does not: choose formats or pixel rules (raster/image_io.cpp, verify/image_read.cpp and
 // model/model.cpp do, as before), or unload the module (readers it made must stay valid).
 #pragma once

@@ -10,15 +10,9 @@
 #include "base/error.h"
 #include "raster/image_module.h"
 
-#ifdef TESSERA_IMAGE_MODULE_LINKED
-// The sanitizer build links the module's code in (raster/CMakeLists.txt says why).
-extern "C" const tessera::imagemod::Api* tessera_image_module_api();
-#endif
-
 namespace tessera::imagemod {
 namespace {
 
-#ifndef TESSERA_IMAGE_MODULE_LINKED
 constexpr const char* kFileName = "libtessera_image_module.so";
 
 std::string besideExecutable() {
@@ -41,11 +35,7 @@ std::vector<std::string> candidates() {
   if (std::string b = besideExecutable(); !b.empty()) c.push_back(b);
   return c;
 }
-#endif
 
-#ifdef TESSERA_IMAGE_MODULE_LINKED
-const Api* load() { return tessera_image_module_api(); }
-#else
 const Api* load() {
   std::string tried;
   for (const std::string& path : candidates()) {
@@ -71,7 +61,6 @@ const Api* load() {
   throw Error(std::string("cannot find the image module ") + kFileName + " (image files are read and written through it):" +
               tried + "\n  set TESSERA_IMAGE_MODULE to its path");
 }
-#endif
 
 }  // namespace
 
