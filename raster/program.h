@@ -109,6 +109,12 @@ class Program {
     return true;
   }
 
+  // The vertex attribute locations shadeVertices reads, one bit per location (bit l: location l). The
+  // vertex stage fetches only these (cpu_backend.cpp, fetchGroup); the others keep GL's default
+  // (0, 0, 0, 1), which the program never reads, so its outputs are those of a full fetch. The default,
+  // every location, is always right; a program that declares fewer must read nothing else
+  // (ProgramAttributes.* shades every built-in program with and without the undeclared ones).
+  virtual uint32_t attributesRead() const { return ~0u; }
   virtual void shadeVertices(std::span<const VertexIn> in, std::span<VertexOut> out, const ShadeContext& ctx) const = 0;
   // Optional geometry stage, once per triangle after vertex shading and before clipping. May change
   // positions, clip distances and varyings, and choose the output layer. Returns false to drop it.

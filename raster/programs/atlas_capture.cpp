@@ -19,6 +19,7 @@ class AtlasCapture final : public Program {
  public:
   std::string_view name() const override { return "atlas_capture"; }
   int varyingCount() const override { return 2; }
+  uint32_t attributesRead() const override { return 0b111u; }  // position, texture coordinates, object id
   int colorOutputs() const override { return 2; }
   bool hasGeometryStage() const override { return true; }
   bool readsFragDepth() const override { return true; }

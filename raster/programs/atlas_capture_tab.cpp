@@ -22,6 +22,7 @@ class AtlasCaptureTab final : public Program {
  public:
   std::string_view name() const override { return "atlas_capture_tab"; }
   int varyingCount() const override { return 3; }
+  uint32_t attributesRead() const override { return 0b111u; }  // position, texture coordinates and layer, object id
   int colorOutputs() const override { return 2; }
   bool hasGeometryStage() const override { return true; }
   bool readsFragDepth() const override { return true; }

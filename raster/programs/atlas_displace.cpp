@@ -20,6 +20,7 @@ class AtlasDisplace final : public Program {
  public:
   std::string_view name() const override { return "atlas_displace"; }
   int varyingCount() const override { return 2; }
+  uint32_t attributesRead() const override { return 0b111u; }  // position, texture coordinates, object id
   bool hasGeometryStage() const override { return true; }
   void shadeVertices(std::span<const VertexIn> in, std::span<VertexOut> out, const ShadeContext& ctx) const override {
     for (size_t i = 0; i < in.size(); ++i) {

@@ -21,6 +21,7 @@ inline uint32_t toShift(float f) {
 class AtlasSpriteBase : public Program {
  public:
   int varyingCount() const override { return 0; }
+  uint32_t attributesRead() const override { return 0b101u; }  // position, the region's shifts
   bool writesDepth() const override { return true; }
   void shadeVertices(std::span<const VertexIn> in, std::span<VertexOut> out, const ShadeContext&) const override {
     for (size_t i = 0; i < in.size(); ++i) {

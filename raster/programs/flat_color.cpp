@@ -8,6 +8,7 @@ class FlatColor final : public Program {
  public:
   std::string_view name() const override { return "flat_color"; }
   int varyingCount() const override { return 0; }
+  uint32_t attributesRead() const override { return 0b001u; }  // position
   bool mayDiscard(const ShadeContext&) const override { return false; }
   void shadeVertices(std::span<const VertexIn> in, std::span<VertexOut> out, const ShadeContext& ctx) const override {
     for (size_t i = 0; i < in.size(); ++i) out[i].pos = mulMat4(ctx.uniforms, 0, in[i].attr[0]);

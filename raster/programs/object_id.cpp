@@ -12,6 +12,7 @@ class ObjectId final : public Program {
  public:
   std::string_view name() const override { return "object_id"; }
   int varyingCount() const override { return 0; }
+  uint32_t attributesRead() const override { return 0b101u; }  // position, object id
   bool mayDiscard(const ShadeContext&) const override { return false; }
   int colorOutputs() const override { return 2; }
   void shadeVertices(std::span<const VertexIn> in, std::span<VertexOut> out, const ShadeContext& ctx) const override {

@@ -31,6 +31,7 @@ class TexarrayBatch final : public Program {
  public:
   std::string_view name() const override { return "texarray_batch"; }
   int varyingCount() const override { return 3; }
+  uint32_t attributesRead() const override { return 0b011u; }  // position, texture coordinates and layer
   // Only the materials layout has an alpha cutoff (per TAM entry, so any draw in it may discard).
   bool mayDiscard(const ShadeContext& ctx) const override { return ctx.uniforms[4][0] == 1.0f; }
   void shadeVertices(std::span<const VertexIn> in, std::span<VertexOut> out, const ShadeContext& ctx) const override {

@@ -23,6 +23,7 @@ class TexturedLayers final : public Program {
  public:
   std::string_view name() const override { return "textured_layers"; }
   int varyingCount() const override { return 4; }
+  uint32_t attributesRead() const override { return 0b011u; }  // position, the two layers' texture coordinates
   bool mayDiscard(const ShadeContext& ctx) const override { return ctx.uniforms[8][1] > 0.0f; }  // cutoff
   void shadeVertices(std::span<const VertexIn> in, std::span<VertexOut> out, const ShadeContext& ctx) const override {
     const Vec4* u = ctx.uniforms;

@@ -10,6 +10,7 @@ class VertexColor final : public Program {
  public:
   std::string_view name() const override { return "vertex_color"; }
   int varyingCount() const override { return 4; }
+  uint32_t attributesRead() const override { return 0b011u; }  // position, colour
   bool mayDiscard(const ShadeContext&) const override { return false; }
   void shadeVertices(std::span<const VertexIn> in, std::span<VertexOut> out, const ShadeContext& ctx) const override {
     for (size_t i = 0; i < in.size(); ++i) {
