@@ -65,8 +65,8 @@ TEST(ProgramAttributes, EveryBuiltInProgramReadsOnlyTheLocationsItDeclares) {
   }
 }
 
-// The check above can see a location left out: each program's outputs change when a location it
-// declares is reset to the default (else a declaration of 0 would pass it too).
+// The other direction: a declaration of more locations than the program reads passes the check above
+// but fetches for nothing, so each declared location must change some output when reset to the default.
 TEST(ProgramAttributes, EveryDeclaredLocationChangesSomeOutput) {
   for (std::string_view name : programNames()) {
     SCOPED_TRACE(std::string(name));
