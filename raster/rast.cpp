@@ -135,7 +135,7 @@ class TriangleRasterizer {
                      const DrawConsts& c)
       : scene_(scene), t_(t), ds_(*scene.states[t.drawState]), s_(s), stats_(stats),
         lateDepth_(c.lateDepth), sourceOver_(c.sourceOver), unorm8Quad_(s.unorm8Quad),
-        unblendedRgba8_(c.unblendedRgba8), sourceOverRgba8_(c.sourceOverRgba8),
+        unblendedRgba8_(c.unblendedRgba8), sourceOverRgba8_(c.sourceOverRgba8), plainRgba8_(c.plainRgba8),
         // The LOD probe shades quad by quad, and a late depth test needs no early one: both stay per quad.
         gathered_(s.quadDepths && s.quadVaryings && !lateDepth_ && !scene.lod),
         needDepths_(c.depthsRead[size_t(walk_)]), edgesRead_(c.edgesRead[size_t(walk_)]), depth_(c.depth), color_(c.color),
@@ -168,6 +168,8 @@ class TriangleRasterizer {
     c.sourceOver = isSourceOver(ds.blend);
     c.unblendedRgba8 = !ds.blend.enabled && allRgba8(scene, ds);
     c.sourceOverRgba8 = c.sourceOver && allRgba8(scene, ds);
+    c.plainRgba8 = c.unblendedRgba8 && !c.lateDepth && !scene.lod && ds.colorOutputs == 1 && tv.color[0] &&
+                   tv.color[0]->desc.format == Format::RGBA8;
     const bool depthTest = ds.depth.test && tv.depth;
     // Quad::z is read by the early depth test and the depth writes (Visibility's in a visibility run,
     // which walks a block without a depth test through visibleBlock instead), and by a program that
@@ -634,6 +636,74 @@ class TriangleRasterizer {
     // Walk::Owned: the depths and counters were written by the triangle's Visibility walk.
     const bool owned = walk_ == Walk::Owned;
     const bool depthWrite = depthTest && ds_.depth.write && !owned;
+    if (plainRgba8_) {
+      writePlainRgba8(depthWrite);
+    } else {
+      writeQuads(depthTest, depthWrite);
+    }
+    if (timing) {
+      s_.ticks.t[kStageShade] += shade1 - shade0;
+      s_.ticks.t[kStageFragops] += stageClock() - shade1;
+    }
+    count_ = 0;
+  }
+
+  // The plain draw's writes (DrawConsts::plainRgba8): writeQuads with what the draw rules out taken out
+  // (late depth, blending, other formats, more outputs, the LOD probe), so the same bytes and counters.
+  // The general loop re-reads the draw's output count and planes per quad, as its byte writes may alias
+  // them; a constant colour's quad cost about 167 instructions there (callgrind, fill_flat_720p).
+  void writePlainRgba8(bool depthWrite) {
+    constexpr bool owned = walk_ == Walk::Owned;
+    uint8_t* const base = color_[0].base;
+    const uint64_t rowBytes = color_[0].rowBytes;
+    for (size_t n = 0; n < count_; ++n) {
+      const Quad& q = s_.quads[n];
+      const uint8_t live = s_.live[n], keep = uint8_t(live & ~s_.outs[n].discard);
+      if (!owned) {
+        stats_.quads_shaded += 1;
+        stats_.fragments_shaded += quadPixels(uint32_t(live));
+        stats_.helper_invocations += 4 - quadPixels(uint32_t(live));
+        stats_.fragments_discarded += quadPixels(uint32_t(live & s_.outs[n].discard));
+      }
+      if (!keep) continue;
+      uint8_t unorm[16];
+      quadUnorm8(s_.outs[n].color[0][0].f, unorm);
+      uint8_t* const row0 = base + uint64_t(uint32_t(q.y)) * rowBytes + uint64_t(uint32_t(q.x)) * 4;
+      if (keep == 0xF) {
+        if (depthWrite) {
+          std::memcpy(depth_.at(q.x, q.y), q.z, 2 * sizeof(float));
+          std::memcpy(depth_.at(q.x, q.y + 1), q.z + 2, 2 * sizeof(float));
+        }
+        std::memcpy(row0, unorm, 8);
+        std::memcpy(row0 + rowBytes, unorm + 8, 8);
+        if (!owned) stats_.pixels_written += 4;
+        continue;
+      }
+      if (q.x < xLast_ && q.y < yLast_) {
+        const uint64_t m0 = kRowPixels[keep & 3], m1 = kRowPixels[keep >> 2];
+        if (depthWrite) mergeRows(depth_, q.x, q.y, q.z, m0, m1);
+        mergeRows(color_[0], q.x, q.y, unorm, m0, m1);
+        if (!owned) stats_.pixels_written += quadPixels(keep);
+        continue;
+      }
+      for (int p = 0; p < 4; ++p) {
+        if (!(keep >> p & 1)) continue;
+        const int32_t x = q.x + (p & 1), y = q.y + (p >> 1);
+        if (depthWrite) std::memcpy(depth_.at(x, y), &q.z[p], sizeof(float));
+        std::memcpy(color_[0].at(x, y), unorm + 4 * p, 4);
+        if (!owned) ++stats_.pixels_written;
+      }
+    }
+  }
+
+  // The 64-bit mask of a row's two RGBA8 (or float) pixels from their two keep bits (pixel 0 low).
+  static constexpr uint64_t kRowPixels[4] = {0, 0xFFFFFFFFu, 0xFFFFFFFF00000000u, ~uint64_t(0)};
+  static_assert(std::endian::native == std::endian::little, "pixel 0 of a row is its low 4 bytes");
+
+  // flush()'s writes of the shaded quads for any draw: the late depth test, then each attachment's
+  // write (raster/fragops.h), with the counters.
+  void writeQuads(bool depthTest, bool depthWrite) {
+    const bool owned = walk_ == Walk::Owned;
     for (size_t n = 0; n < count_; ++n) {
       const Quad& q = s_.quads[n];
       uint8_t keep = uint8_t(s_.live[n] & ~s_.outs[n].discard);
@@ -687,9 +757,7 @@ class TriangleRasterizer {
         // A partly covered quad inside the target, unblended RGBA8: its kept pixels merged into the two
         // rows under a mask, with no branch per pixel. The other pixels get their own bytes back: the
         // tile owns them, and nothing else writes them meanwhile.
-        static constexpr uint64_t kPixels[4] = {0, 0xFFFFFFFFu, 0xFFFFFFFF00000000u, ~uint64_t(0)};
-        static_assert(std::endian::native == std::endian::little, "pixel 0 of a row is its low 4 bytes");
-        const uint64_t m0 = kPixels[keep & 3], m1 = kPixels[keep >> 2];
+        const uint64_t m0 = kRowPixels[keep & 3], m1 = kRowPixels[keep >> 2];
         if (depthWrite) mergeRows(depth_, q.x, q.y, z, m0, m1);
         for (int a = 0; a < ds_.colorOutputs; ++a)
           if (color_[a].base) mergeRows(color_[a], q.x, q.y, unorm[a], m0, m1);
@@ -717,11 +785,6 @@ class TriangleRasterizer {
       }
       if (scene_.lod) recordLod(q, keep);
     }
-    if (timing) {
-      s_.ticks.t[kStageShade] += shade1 - shade0;
-      s_.ticks.t[kStageFragops] += stageClock() - shade1;
-    }
-    count_ = 0;
   }
 
   // The 8 bytes of each of a quad's two rows in `plane` (at x, y and x, y + 1): those under mask m0 (row
@@ -767,6 +830,7 @@ class TriangleRasterizer {
   bool unormMemo_ = true;  // quadUnorm8 asks the memo until its first miss
   const bool unblendedRgba8_;  // no blending, and every written attachment is RGBA8 or absent
   const bool sourceOverRgba8_;  // source-over blending, and every written attachment is RGBA8 or absent
+  const bool plainRgba8_;  // DrawConsts::plainRgba8: flush writes through writePlainRgba8
   const bool gathered_;  // blocks' quads go through the interpolation kernels (runGathered)
   const bool needDepths_;  // DrawConsts::depthsRead of this walk: runGathered interpolates Quad::z
   const bool edgesRead_;   // DrawConsts::edgesRead of this walk: gather makes the quads' edge values
@@ -831,21 +895,38 @@ bool joinsVisibilityRun(const Scene& scene, const RastScratch& s, const DrawStat
 
 // The quads of the tile with a pixel in RastScratch::owner, grouped by owner in s.ownedQuads: the
 // quads of id k are [s.ownedStart[k], s.ownedStart[k + 1]), each with the pixels k owns in it.
+// A quad's two rows are read as one 32-bit word each (pixel 0 in the low half), so the common quad, one
+// owner or none, costs two loads and two comparisons; the entries go to arrays sized once for a whole
+// tile, written by index (with four ids read per pixel and a push_back per quad, the grouping was 16 %
+// of fill_flat_720p's instructions).
 void groupOwnedQuads(const TileRect& tile, size_t ids, RastScratch& s) {
+  // At most one entry per owner of each of a quad's four pixels.
+  constexpr size_t kMaxEntries = size_t(kTileSize / 2) * size_t(kTileSize / 2) * 4;
+  if (s.ownedTemp.size() < kMaxEntries) s.ownedTemp.resize(kMaxEntries), s.ownedQuads.resize(kMaxEntries);
   s.ownedStart.assign(ids + 2, 0);
-  s.ownedTemp.clear();
-  for (int32_t y = tile.y0; y <= tile.y1; y += 2)
-    for (int32_t x = tile.x0; x <= tile.x1; x += 2) {
-      // A quad past the target's last row or column reads owner 0 there: nothing owns it.
-      const uint16_t* o = s.owner + size_t(y - tile.y0) * kTileSize + size_t(x - tile.x0);
-      const uint16_t id[4] = {o[0], o[1], o[kTileSize], o[kTileSize + 1]};
-      if (id[0] == id[1] && id[0] == id[2] && id[0] == id[3]) {  // the common case: one owner or none
-        if (id[0]) {
-          s.ownedTemp.push_back({x, y, uint8_t(0xF), id[0]});
-          ++s.ownedStart[size_t(id[0]) + 1];
+  RastScratch::OwnedQuad* const temp = s.ownedTemp.data();
+  uint32_t* const count = s.ownedStart.data() + 1;  // count[id]: the entries of id
+  size_t n = 0;
+  const int32_t w = tile.x1 - tile.x0 + 1, h = tile.y1 - tile.y0 + 1;
+  static_assert(std::endian::native == std::endian::little, "pixel 0 of a quad's row is the word's low half");
+  for (int32_t ry = 0; ry < h; ry += 2) {
+    // A quad past the target's last row or column reads owner 0 there: nothing owns it (the map is
+    // kTileSize square, so the row and column after a tile's odd last one are inside it).
+    const uint16_t* const row = s.owner + size_t(ry) * kTileSize;
+    for (int32_t rx = 0; rx < w; rx += 2) {
+      uint32_t top, bottom;
+      std::memcpy(&top, row + rx, sizeof top);
+      std::memcpy(&bottom, row + kTileSize + rx, sizeof bottom);
+      const int32_t x = tile.x0 + rx, y = tile.y0 + ry;
+      if (top == bottom && top >> 16 == (top & 0xFFFF)) {  // the common case: one owner or none
+        if (top) {
+          const uint16_t id = uint16_t(top);
+          temp[n++] = {x, y, uint8_t(0xF), id};
+          ++count[id];
         }
         continue;
       }
+      const uint16_t id[4] = {uint16_t(top), uint16_t(top >> 16), uint16_t(bottom), uint16_t(bottom >> 16)};
       for (int p = 0; p < 4; ++p) {
         if (!id[p]) continue;
         int q = 0;
@@ -853,14 +934,14 @@ void groupOwnedQuads(const TileRect& tile, size_t ids, RastScratch& s) {
         if (q < p) continue;  // counted with its first pixel
         uint8_t mask = 0;
         for (int r = p; r < 4; ++r) mask |= uint8_t(id[r] == id[p]) << r;
-        s.ownedTemp.push_back({x, y, mask, id[p]});
-        ++s.ownedStart[size_t(id[p]) + 1];
+        temp[n++] = {x, y, mask, id[p]};
+        ++count[id[p]];
       }
     }
+  }
   for (size_t k = 1; k < s.ownedStart.size(); ++k) s.ownedStart[k] += s.ownedStart[k - 1];
-  s.ownedQuads.resize(s.ownedTemp.size());
   s.ownedFill.assign(s.ownedStart.begin(), s.ownedStart.end() - 1);
-  for (const RastScratch::OwnedQuad& q : s.ownedTemp) s.ownedQuads[s.ownedFill[q.id]++] = q;
+  for (size_t k = 0; k < n; ++k) s.ownedQuads[s.ownedFill[temp[k].id]++] = temp[k];
 }
 
 // The triangles bin[first, last) as one visibility run: every one walked for visibility, then each

@@ -58,6 +58,9 @@ struct DrawConsts {
   bool sourceOver = false;      // blending is SRC_ALPHA, ONE_MINUS_SRC_ALPHA, ADD
   bool unblendedRgba8 = false;  // no blending, every written attachment RGBA8 or absent
   bool sourceOverRgba8 = false;  // source-over blending, every written attachment RGBA8 or absent
+  // The plain draw (rast.cpp, writePlainRgba8): one colour output, to a present RGBA8 attachment, no
+  // blending, no gl_FragDepth and no LOD probe.
+  bool plainRgba8 = false;
   bool depthWrite = false;      // the depth test is on with a depth target, and depth writes are on
   bool hizEligible = false;     // the hierarchical Z may skip blocks (rast.cpp, occlusionFloor)
   // Per walk of rast.cpp (Immediate, Visibility, Owned): the gathered quads' depths are interpolated,
