@@ -20,6 +20,10 @@
 #include <limits>
 #include <vector>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "raster/coverage_simd.h"
 #include "raster/fragops_simd.h"
 #include "raster/interpolate_simd.h"
@@ -89,17 +93,35 @@ struct RastScratch {
     // out = fn(values) for a quad's 16 values: from the entry when all 64 bytes of the values equal
     // it (exact: fn is a pure function of the bits), otherwise converted, entered, and `ask` cleared.
     void convert(Unorm8QuadFn fn, const float* values, uint8_t* bytes, bool& ask) {
-      uint64_t v[8], diff = 0;
-      std::memcpy(v, values, sizeof v);
-      for (int i = 0; i < 8; ++i) diff |= v[i] ^ in[i];
-      if (diff == 0) {
+      if (same(values)) {
         std::memcpy(bytes, out, sizeof out);
         return;
       }
       ask = false;
       fn(values, bytes);
-      std::memcpy(in, v, sizeof v);
+      std::memcpy(in, values, sizeof in);
       std::memcpy(out, bytes, sizeof out);
+    }
+    // Whether the 64 bytes at `values` equal `in`: a comparison of bits, so any order of the loads
+    // gives the same answer. With SSE2, four 16-byte compares (about 14 instructions); compilers do not
+    // vectorize the 64-bit loop below, which cost about 37 per quad of a constant colour (callgrind,
+    // fill_flat_720p).
+    bool same(const float* values) const {
+#if defined(__SSE2__)
+      const auto* a = reinterpret_cast<const __m128i*>(values);
+      const auto* b = reinterpret_cast<const __m128i*>(in);
+      const __m128i e0 = _mm_cmpeq_epi8(_mm_loadu_si128(a), _mm_loadu_si128(b));
+      const __m128i e1 = _mm_cmpeq_epi8(_mm_loadu_si128(a + 1), _mm_loadu_si128(b + 1));
+      const __m128i e2 = _mm_cmpeq_epi8(_mm_loadu_si128(a + 2), _mm_loadu_si128(b + 2));
+      const __m128i e3 = _mm_cmpeq_epi8(_mm_loadu_si128(a + 3), _mm_loadu_si128(b + 3));
+      const __m128i all = _mm_and_si128(_mm_and_si128(e0, e1), _mm_and_si128(e2, e3));
+      return _mm_movemask_epi8(all) == 0xFFFF;
+#else
+      uint64_t v[8], diff = 0;
+      std::memcpy(v, values, sizeof v);
+      for (int i = 0; i < 8; ++i) diff |= v[i] ^ in[i];
+      return diff == 0;
+#endif
     }
   } unormMemo;
   // The interpolation kernels (raster/interpolate_simd.h), resolved per tile; nullptr under
