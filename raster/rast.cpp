@@ -115,11 +115,11 @@ bool allRgba8(const Scene& scene, const DrawState& ds) {
 // coverage, the early depth test, the depth writes and every counter, and records in
 // RastScratch::owner which triangle's fragment last passed at each pixel; Owned then shades, in the
 // same triangle order, only the quads with a pixel the triangle still owns (shadeOwned: the quads are
-// read from the owner map, not walked again), and writes only those pixels' colours. The bytes are Immediate's: without blending every passing fragment replaces the
-// colour, so a pixel ends with its last passing fragment's colour; without discard or gl_FragDepth a
-// fragment's depth test and write do not depend on its shading; and a pixel's shaded value depends
-// only on its quad's four interpolated positions, which do not depend on the live mask (helper pixels
-// are computed the same way).
+// read from the owner map, not walked again), and writes only those pixels' colours. The bytes are
+// Immediate's: without blending every passing fragment replaces the colour, so a pixel ends with its
+// last passing fragment's colour; without discard or gl_FragDepth a fragment's depth test and write do
+// not depend on its shading; and a pixel's shaded value depends only on its quad's four interpolated
+// positions, which do not depend on the live mask (helper pixels are computed the same way).
 enum class Walk : uint8_t { Immediate, Visibility, Owned };
 static_assert(size_t(Walk::Owned) + 1 == std::size(DrawConsts{}.edgesRead), "DrawConsts has an entry per walk");
 
@@ -198,6 +198,13 @@ class TriangleRasterizer {
     tileX0_ = tile.x0, tileY0_ = tile.y0;
     setQuadSteps();
     for (int i = 0; i < 3; ++i) edges_.dx[i] = quadStep_[i][1], edges_.dy[i] = quadStep_[i][2], edges_.bias[i] = t_.bias[i];
+    if constexpr (walk_ == Walk::Visibility) {
+      // A box the triangle covers whole, with no depth test (a full-screen layer's tiles): every block's
+      // mask would be the box's part of it, and visibleBlock's work per block is then visibleBox's.
+      if (!(ds_.depth.test && scene_.target.depth) && x1 - x0 + 1 >= kBlockSize && y1 - y0 + 1 >= kBlockSize &&
+          coversBox(x0, y0, x1, y1))
+        return visibleBox(x0, y0, x1, y1);  // (a Visibility walk batches no quads: nothing to flush)
+    }
     // A small box inside one block (x0 and x1 >= 0 agree above the block's bits). Not under "reference"
     // (no quadDepths kernel), which walks every block: tests compare the two (SmallBox.*).
     if (x1 - x0 < kSmallBox && y1 - y0 < kSmallBox && (x0 ^ x1) < kBlockSize && (y0 ^ y1) < kBlockSize &&
@@ -482,6 +489,36 @@ class TriangleRasterizer {
     // The counters of its quads: those with a covered pixel, and their covered pixels.
     const uint64_t quads = popcount64((mask | mask >> 1 | mask >> 8 | mask >> 9) & 0x0055005500550055u);
     const uint64_t n = popcount64(mask);
+    stats_.quads_shaded += quads;
+    stats_.fragments_shaded += n;
+    stats_.helper_invocations += 4 * quads - n;
+    stats_.pixels_written += n;
+  }
+
+  // Whether the triangle covers every pixel of the box [x0, x1] x [y0, y1]: the fill rule's test
+  // (e_i - bias_i >= 0 for every edge, as the coverage kernel applies it) at the box's four corner
+  // pixels. Each edge function is linear, so its least value over the box's pixel centres is at a
+  // corner; exact int64 values (edgeAt).
+  bool coversBox(int32_t x0, int32_t y0, int32_t x1, int32_t y1) const {
+    const int32_t xs[2] = {x0, x1}, ys[2] = {y0, y1};
+    for (int c = 0; c < 4; ++c) {
+      const int32_t x = xs[c & 1], y = ys[c >> 1];
+      for (int i = 0; i < 3; ++i)
+        if (edgeAt(i, x, y) - t_.bias[i] < 0) return false;
+    }
+    return true;
+  }
+
+  // Walk::Visibility without a depth test, over a box the triangle covers whole (coversBox): the sum of
+  // visibleBlock over the box's blocks, each with the box's part of it as its mask. The owner map takes
+  // the id row by row; the counters come in closed form: every pixel of the box passes, and the quads
+  // are the 2x2 ones (at even x and y: blocks start at multiples of 8) that hold a pixel of it.
+  void visibleBox(int32_t x0, int32_t y0, int32_t x1, int32_t y1) {
+    const size_t w = size_t(x1 - x0 + 1);
+    uint16_t* row = s_.owner + size_t(y0 - tileY0_) * kTileSize + size_t(x0 - tileX0_);
+    for (int32_t y = y0; y <= y1; ++y, row += kTileSize) std::fill_n(row, w, id_);
+    const uint64_t n = uint64_t(w) * uint64_t(y1 - y0 + 1);
+    const uint64_t quads = uint64_t((x1 >> 1) - (x0 >> 1) + 1) * uint64_t((y1 >> 1) - (y0 >> 1) + 1);
     stats_.quads_shaded += quads;
     stats_.fragments_shaded += n;
     stats_.helper_invocations += 4 * quads - n;

@@ -9,9 +9,11 @@
 // no depth; a program that writes gl_FragDepth gets the late test on its value, spec-choices F11),
 // fragment shading in batches, then fragops.h per pixel. Consecutive triangles whose fragments' fate
 // does not depend on shading (no blending, no discard, no gl_FragDepth) run as a visibility run:
-// coverage and depth first, then only the fragments that stay visible are shaded. A block whose covered
-// pixels must all fail a LESS or LEQUAL depth test, by the triangle's least vertex depth against the
-// block's largest stored depth (hierarchical Z), is not walked; its fragments count as failing.
+// coverage and depth first, then only the fragments that stay visible are shaded (without a depth test,
+// a triangle that covers its box in the tile whole records it in one fill, not block by block). A
+// block whose covered pixels must all fail a LESS or LEQUAL depth test, by the triangle's least vertex
+// depth against the block's largest stored depth (hierarchical Z), is not walked; its fragments count
+// as failing.
 // A tile owns its pixels, so tiles run in parallel and the result is independent of thread count.
 // Does not implement: setup or binning (setup.h).
 #pragma once

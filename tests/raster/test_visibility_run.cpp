@@ -6,12 +6,14 @@
 // bins per upload segment.
 #include <gtest/gtest.h>
 
+#include <random>
 #include <string>
 #include <vector>
 
 #include "raster/simd_targets.h"
 #include "tests/raster/render_helpers.h"
 #include "tools/scenes/builder.h"
+#include "tools/scenes/scene_common.h"
 
 namespace tessera::scenes {
 using tessera::testing::expectSameCounters;
@@ -89,22 +91,70 @@ CommandList layeredFrame(const Layers& o) {
   return cl;
 }
 
-void expectImmediateBytes(const Layers& o, const std::string& what) {
+// The frame's bytes and counters at 1, 2 and 7 threads on the best SIMD target are those of the
+// "reference" target at 1 thread (the immediate walk); that reference run is returned.
+Rendered expectImmediateBytesOf(const CommandList& cl, const std::string& what) {
   const SimdTargetGuard guard;
-  const CommandList cl = layeredFrame(o);
   simd::forceTarget("reference");
   const Rendered immediate = renderList(cl, 1);
+  simd::forceTarget("best");
+  EXPECT_NE(simd::activeTarget(), "reference") << "this machine has no SIMD target: nothing to compare";
+  for (int threads : {1, 2, 7}) {
+    const Rendered runs = renderList(cl, threads);
+    EXPECT_EQ(runs.hashes.size(), 1u) << what;
+    EXPECT_EQ(runs.hashes, immediate.hashes) << what << ", " << threads << " threads";
+    expectSameCounters(runs.stats, immediate.stats, what + ", " + std::to_string(threads) + " threads");
+  }
+  return immediate;
+}
+
+void expectImmediateBytes(const Layers& o, const std::string& what) {
+  const Rendered immediate = expectImmediateBytesOf(layeredFrame(o), what);
   if (o.discard >= 0) {
     EXPECT_GT(immediate.stats.fragments_discarded, 0u) << what << ": the frame must discard";
   }
-  simd::forceTarget("best");
-  ASSERT_NE(simd::activeTarget(), "reference") << "this machine has no SIMD target: nothing to compare";
-  for (int threads : {1, 2, 7}) {
-    const Rendered runs = renderList(cl, threads);
-    ASSERT_EQ(runs.hashes.size(), 1u);
-    EXPECT_EQ(runs.hashes[0], immediate.hashes[0]) << what << ", " << threads << " threads";
-    expectSameCounters(runs.stats, immediate.stats, what + ", " + std::to_string(threads) + " threads");
+}
+
+// Without a depth test, a Visibility walk over a box its triangle covers whole (TriangleRasterizer::
+// visibleBox) fills the owner map and counts in closed form instead of walking blocks. On a 203 x 141
+// target (tiles of 64: the last column and row partial, odd, with quads past the edge): three full-target
+// layers (enough overlap that every tile walks a visibility run), large random triangles that cover
+// some tiles whole, and triangles with a side exactly through pixel centres on a tile's edge, so that
+// the fill rule decides whether a box is covered.
+CommandList wholeTileFrame(bool depthAttachment, uint32_t seed) {
+  constexpr int w = 203, h = 141;
+  std::mt19937 rng(seed);
+  const auto unit = [&]() { return float(rng() % 10001) / 10000.0f; };
+  const auto colour = [&]() { return glm::vec4{unit(), unit(), unit(), 1.0f}; };
+  Mesh m;
+  const auto tri = [&](glm::vec2 a, glm::vec2 b, glm::vec2 c) {
+    m.triangle({{a, 0}, colour(), 0}, {{b, 0}, colour(), 0}, {{c, 0}, colour(), 0});
+  };
+  for (int i = 0; i < 3; ++i)
+    m.quad({0, 0, 0}, {w, 0, 0}, {w, h, 0}, {0, h, 0}, colour(), colour(), colour(), colour());
+  for (int i = 0; i < 12; ++i) {
+    const float x = unit() * w, y = unit() * h, size = 60.0f + unit() * 340.0f;
+    const auto corner = [&]() { return glm::vec2{x + (unit() - 0.5f) * size, y + (unit() - 0.5f) * size}; };
+    tri(corner(), corner(), corner());
   }
+  // Last, so no later layer hides them: triangles reaching far past the target (inside the guard band)
+  // with one side exactly through a row or column of pixel centres at a tile's edge. The fill rule
+  // leaves out row 63 (a top edge) and column 127 (a right edge), so no box of those tiles is covered;
+  // it keeps row 64 (a bottom edge) and column 128 (a left edge), so boxes of tiles there are.
+  tri({-300, 63.5f}, {500, 63.5f}, {100, -500});
+  tri({-300, 64.5f}, {100, 600}, {500, 64.5f});
+  tri({127.5f, -500}, {127.5f, 600}, {-600, 70});
+  tri({128.5f, -500}, {900, 70}, {128.5f, 600});
+  // A left side between pixel centres at x = 193: boxes from column 193 (odd) to the last, 202 (even),
+  // whose 2 x 2 quads are not half the box's width.
+  tri({193.0f, -500}, {900, 70}, {193.0f, 600});
+  CommandList cl;
+  beginFrame(cl, w, h, depthAttachment, {0.5f, 0.25f, 0.75f, 1.0f});
+  const uint32_t count = bindMesh(cl, m);
+  cl.useProgram(cl.createProgram("vertex_color"));
+  setMatrix(cl, 0, ortho(0, w, 0, h, -1, 1));
+  cl.drawIndexed(0, count);
+  return cl;
 }
 
 // A size x size RGBA8 target, bound, with its viewport, cleared to opaque black (LazyFlush's frames).
@@ -132,6 +182,17 @@ TEST(VisibilityRun, ADiscardingOrBlendingDrawEndsTheRunAndStillGetsTheImmediateB
   expectImmediateBytes({.discard = 4}, "discard in the middle");
   expectImmediateBytes({.blend = 4}, "blend in the middle");
   expectImmediateBytes({.noDepthWrite = 1, .discard = 4, .blend = 5}, "all three");
+}
+
+TEST(VisibilityRun, TrianglesCoveringWholeTilesWithoutADepthTestGiveTheImmediateBytes) {
+  for (const uint32_t seed : {1u, 2u, 3u}) {
+    for (const bool depthAttachment : {false, true}) {
+      const std::string what = std::string(depthAttachment ? "depth attachment, test off" : "no depth attachment") +
+                               ", seed " + std::to_string(seed);
+      const Rendered r = expectImmediateBytesOf(wholeTileFrame(depthAttachment, seed), what);
+      EXPECT_GT(r.stats.pixels_written, 4u * 203u * 141u) << what << ": the layers overlap (a visibility run per tile)";
+    }
+  }
 }
 
 TEST(VisibilityRun, UploadsMidFrameGiveTheImmediateBytes) {
