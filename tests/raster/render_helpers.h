@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,31 @@ inline void expectSameCounters(const detail::PipelineStats& a, const detail::Pip
   // Plain integer counters without padding: bytewise equality is field equality.
   static_assert(sizeof(detail::PipelineStats) == 12 * sizeof(uint64_t));
   EXPECT_EQ(std::memcmp(&a, &b, sizeof a), 0) << what << ": the pipeline counters differ";
+}
+
+// `list` rendered at each thread count gives `expected`'s image hashes and pipeline counters; `what`
+// names the frame in a failure.
+inline void expectRendersAs(const CommandList& list, const Rendered& expected, std::initializer_list<int> threads,
+                            const std::string& what) {
+  for (const int t : threads) {
+    const Rendered r = renderList(list, t);
+    const std::string at = what + ", " + std::to_string(t) + " threads";
+    EXPECT_EQ(r.hashes, expected.hashes) << at;
+    expectSameCounters(r.stats, expected.stats, at);
+  }
+}
+
+// `list` on the best SIMD target, at each thread count, gives the bytes and counters of the scalar
+// reference target at one thread, which it returns. Fails where the machine has no SIMD target.
+inline Rendered expectBestTargetGivesReferenceFrame(const CommandList& list, std::initializer_list<int> threads,
+                                                   const std::string& what) {
+  const SimdTargetGuard guard;
+  simd::forceTarget("reference");
+  const Rendered reference = renderList(list, 1);
+  simd::forceTarget("best");
+  EXPECT_NE(simd::activeTarget(), "reference") << "this machine has no SIMD target: nothing to compare";
+  expectRendersAs(list, reference, threads, what);
+  return reference;
 }
 
 }  // namespace tessera::testing

@@ -18,7 +18,7 @@
 namespace tessera::scenes {
 namespace {
 
-using tessera::testing::expectSameCounters;
+using tessera::testing::expectRendersAs;
 using tessera::testing::Rendered;
 using tessera::testing::renderList;
 
@@ -67,12 +67,7 @@ void expectGeneralLoopsFrame(int w, int h, int n, float maxSize, bool depth, uin
   const Rendered general = renderList(randomTriangles(w, h, n, maxSize, depth, true, seed), 1);
   ASSERT_EQ(general.hashes.size(), 1u) << what;
   ASSERT_GT(general.stats.pixels_written, 0u) << what;
-  const CommandList plain = randomTriangles(w, h, n, maxSize, depth, false, seed);
-  for (const int threads : {1, 7}) {
-    const Rendered r = renderList(plain, threads);
-    EXPECT_EQ(r.hashes, general.hashes) << what << ", " << threads << " threads";
-    expectSameCounters(r.stats, general.stats, what + ", " + std::to_string(threads) + " threads");
-  }
+  expectRendersAs(randomTriangles(w, h, n, maxSize, depth, false, seed), general, {1, 7}, what);
 }
 
 }  // namespace

@@ -17,10 +17,7 @@
 namespace tessera::scenes {
 namespace {
 
-using tessera::testing::expectSameCounters;
-using tessera::testing::Rendered;
-using tessera::testing::renderList;
-using tessera::testing::SimdTargetGuard;
+using tessera::testing::expectBestTargetGivesReferenceFrame;
 
 // `n` triangles of 0.1 to 5 px with random positions, half of them on the half-pixel grid (vertices
 // on pixel centres: edges through them), at random depths; additive blending or a LESS depth test.
@@ -68,16 +65,7 @@ CommandList smallTriangles(int w, int h, int n, bool depth, uint32_t seed) {
 
 // The frame on the best target, at 1 and 7 threads, gives the reference target's bytes and counters.
 void expectReferenceFrame(const CommandList& cl, const std::string& what) {
-  const SimdTargetGuard guard;
-  simd::forceTarget("reference");
-  const Rendered reference = renderList(cl, 1);
-  simd::forceTarget("best");
-  ASSERT_NE(simd::activeTarget(), "reference") << "this machine has no SIMD target: nothing to compare";
-  for (const int threads : {1, 7}) {
-    const Rendered r = renderList(cl, threads);
-    EXPECT_EQ(r.hashes, reference.hashes) << what << ", " << threads << " threads";
-    expectSameCounters(r.stats, reference.stats, what + ", " + std::to_string(threads) + " threads");
-  }
+  expectBestTargetGivesReferenceFrame(cl, {1, 7}, what);
 }
 
 }  // namespace

@@ -16,10 +16,9 @@
 #include "tools/scenes/scene_common.h"
 
 namespace tessera::scenes {
-using tessera::testing::expectSameCounters;
+using tessera::testing::expectBestTargetGivesReferenceFrame;
 using tessera::testing::Rendered;
 using tessera::testing::renderList;
-using tessera::testing::SimdTargetGuard;
 
 namespace {
 
@@ -94,17 +93,8 @@ CommandList layeredFrame(const Layers& o) {
 // The frame's bytes and counters at 1, 2 and 7 threads on the best SIMD target are those of the
 // "reference" target at 1 thread (the immediate walk); that reference run is returned.
 Rendered expectImmediateBytesOf(const CommandList& cl, const std::string& what) {
-  const SimdTargetGuard guard;
-  simd::forceTarget("reference");
-  const Rendered immediate = renderList(cl, 1);
-  simd::forceTarget("best");
-  EXPECT_NE(simd::activeTarget(), "reference") << "this machine has no SIMD target: nothing to compare";
-  for (int threads : {1, 2, 7}) {
-    const Rendered runs = renderList(cl, threads);
-    EXPECT_EQ(runs.hashes.size(), 1u) << what;
-    EXPECT_EQ(runs.hashes, immediate.hashes) << what << ", " << threads << " threads";
-    expectSameCounters(runs.stats, immediate.stats, what + ", " + std::to_string(threads) + " threads");
-  }
+  const Rendered immediate = expectBestTargetGivesReferenceFrame(cl, {1, 2, 7}, what);
+  EXPECT_EQ(immediate.hashes.size(), 1u) << what;
   return immediate;
 }
 
